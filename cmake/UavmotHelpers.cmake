@@ -1,0 +1,65 @@
+# Small helpers so every component's CMakeLists reads the same way.
+
+# Warnings apply to project code only; generated IDL code gets its own flags.
+function(uavmot_set_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local -Wnon-virtual-dtor)
+  # GCC 12 reports std::string concatenation at -O3 as -Wrestrict (GCC bug 105329): a false positive.
+  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
+    target_compile_options(${target} PRIVATE -Wno-restrict)
+  endif()
+  if(UAVMOT_WERROR)
+    target_compile_options(${target} PRIVATE -Werror)
+  endif()
+endfunction()
+
+if(UAVMOT_SANITIZE)
+  add_compile_options(-fsanitize=${UAVMOT_SANITIZE} -fno-omit-frame-pointer)
+  add_link_options(-fsanitize=${UAVMOT_SANITIZE})
+endif()
+
+# uavmot_add_library(NAME SOURCES ... DEPS ...)
+# A component library: public headers in include/, sources in src/.
+function(uavmot_add_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_library(${name} STATIC ${ARG_SOURCES})
+  target_include_directories(${name} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include
+                                     PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
+  target_link_libraries(${name} PUBLIC ${ARG_DEPS})
+  set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  uavmot_set_warnings(${name})
+endfunction()
+
+# uavmot_add_executable(NAME SOURCES ... DEPS ...)
+# A process: `uavmot-<x>` executables become `uavmot <x>` subcommands.
+function(uavmot_add_executable name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS})
+  uavmot_set_warnings(${name})
+  install(TARGETS ${name} RUNTIME DESTINATION bin)
+endfunction()
+
+# uavmot_add_gtest(NAME SOURCES ... DEPS ... [LABELS ...] [TIMEOUT s])
+# Tests live beside the code they test (components/<x>/tests/).
+function(uavmot_add_gtest name)
+  cmake_parse_arguments(ARG "" "TIMEOUT" "SOURCES;DEPS;LABELS" ${ARGN})
+  if(NOT UAVMOT_BUILD_TESTS)
+    return()
+  endif()
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main GTest::gmock)
+  target_compile_definitions(${name} PRIVATE
+    UAVMOT_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
+    UAVMOT_BINARY_DIR="${CMAKE_BINARY_DIR}"
+    UAVMOT_SHARED_DATA="${UAVMOT_SHARED_DATA}")
+  uavmot_set_warnings(${name})
+  set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
+  if(NOT ARG_TIMEOUT)
+    set(ARG_TIMEOUT 300)
+  endif()
+  if(NOT ARG_LABELS)
+    set(ARG_LABELS unit)
+  endif()
+  add_test(NAME ${name} COMMAND ${name} WORKING_DIRECTORY ${CMAKE_BINARY_DIR})
+  set_tests_properties(${name} PROPERTIES TIMEOUT ${ARG_TIMEOUT} LABELS "${ARG_LABELS}")
+endfunction()

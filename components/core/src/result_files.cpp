@@ -1,0 +1,118 @@
+#include "uavmot/core/result_files.hpp"
+
+#include <cmath>
+#include <filesystem>
+
+#include <fmt/format.h>
+#include <fmt/os.h>
+#include <nlohmann/json.hpp>
+
+#include "uavmot/core/error.hpp"
+
+namespace uavmot {
+namespace {
+// Fixed precision keeps files deterministic and diff-friendly; 3 decimals is 1/1000 px.
+std::string mot_box_line(int64_t frame, int64_t id, const cv::Rect2d& r, double conf) {
+  return fmt::format("{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},-1,-1,-1\n", frame, id, r.x, r.y, r.width, r.height, conf);
+}
+}  // namespace
+
+ResultFilesWriter::ResultFilesWriter(ResultFilesOptions options) : options_(std::move(options)) {
+  std::error_code ec;
+  std::filesystem::create_directories(options_.directory, ec);
+  if (ec) throw InputError("cannot create output folder '" + options_.directory + "': " + ec.message());
+  tracks_ = open("tracks.txt");
+  tracks_obb_ = open("tracks_obb.csv");
+  homographies_ = open("homographies.txt");
+  tracks_obb_ << "frame,id,state,cx,cy,width,length,angle_deg,vx,vy";
+  if (options_.gsd_m > 0.0) tracks_obb_ << ",cx_m,cy_m,width_m,length_m,speed_mps,speed_kmh";
+  tracks_obb_ << "\n";
+  if (options_.write_features) {
+    features_ = open("features.csv");
+    features_ << "frame,feature_id,x,y,vx,vy,moving\n";
+  }
+  if (options_.write_segmentation) {
+    clusters_ = open("clusters.txt");
+    regions_ = open("regions.txt");
+  }
+}
+
+ResultFilesWriter::~ResultFilesWriter() = default;
+
+std::ofstream ResultFilesWriter::open(const std::string& name) {
+  const auto path = std::filesystem::path(options_.directory) / name;
+  std::ofstream out(path, std::ios::out | std::ios::trunc);
+  if (!out) throw InputError("cannot write '" + path.string() + "'");
+  return out;
+}
+
+void ResultFilesWriter::write_motion(const MotionEstimate& motion) {
+  if (closed_) throw std::logic_error("ResultFilesWriter used after close()");
+  ++frames_;
+  if (motion.quality.valid) ++valid_homographies_;
+  Homography h = motion.homography;
+  if (!normalize_homography(h)) h = identity_homography();
+  homographies_ << motion.frame_index;
+  for (int i = 0; i < 9; ++i) homographies_ << fmt::format(",{:.10g}", h.val[i]);
+  homographies_ << "\n";
+  if (!options_.write_features) return;
+  for (const auto& f : motion.features) {
+    features_ << fmt::format("{},{},{:.3f},{:.3f},{:.4f},{:.4f},{}\n", motion.frame_index, f.id, f.position.x,
+                             f.position.y, f.velocity[0], f.velocity[1], f.moving ? 1 : 0);
+  }
+}
+
+void ResultFilesWriter::write_segmentation(const SegmentationResult& segmentation) {
+  if (closed_) throw std::logic_error("ResultFilesWriter used after close()");
+  if (!options_.write_segmentation) return;
+  for (const auto& c : segmentation.clusters) {
+    clusters_ << mot_box_line(segmentation.frame_index, -1, axis_aligned_bounds(c.box),
+                              static_cast<double>(c.feature_ids.size()));
+  }
+  for (const auto& r : segmentation.regions) {
+    regions_ << mot_box_line(segmentation.frame_index, -1, axis_aligned_bounds(r.box), r.score);
+  }
+}
+
+void ResultFilesWriter::write_tracks(const TrackList& tracks) {
+  if (closed_) throw std::logic_error("ResultFilesWriter used after close()");
+  for (const auto& t : tracks.tracks) {
+    if (t.state == TrackState::Confirmed) {
+      tracks_ << mot_box_line(tracks.frame_index, static_cast<int64_t>(t.id), axis_aligned_bounds(t.box), 1.0);
+      confirmed_ids_.insert(t.id);
+    }
+    tracks_obb_ << fmt::format("{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.4f},{:.4f}", tracks.frame_index, t.id,
+                               to_string(t.state), t.box.cx, t.box.cy, t.box.width, t.box.length, t.box.angle_deg,
+                               t.velocity[0], t.velocity[1]);
+    if (options_.gsd_m > 0.0) {
+      const double g = options_.gsd_m;
+      const double speed_mps = std::hypot(t.velocity[0], t.velocity[1]) * g * options_.fps;
+      tracks_obb_ << fmt::format(",{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.2f}", t.box.cx * g, t.box.cy * g,
+                                 t.box.width * g, t.box.length * g, speed_mps, speed_mps * 3.6);
+    }
+    tracks_obb_ << "\n";
+  }
+}
+
+void ResultFilesWriter::close(RunSummary summary) {
+  if (closed_) return;
+  closed_ = true;
+  for (auto* s : {&tracks_, &tracks_obb_, &homographies_, &features_, &clusters_, &regions_}) {
+    if (s->is_open()) s->close();
+  }
+  summary.frames = frames_;
+  summary.valid_homographies = valid_homographies_;
+  summary.tracks_confirmed = confirmed_ids_.size();
+  nlohmann::json j;
+  j["input"] = summary.input;
+  j["frames"] = summary.frames;
+  j["valid_homographies"] = summary.valid_homographies;
+  j["confirmed_tracks"] = summary.tracks_confirmed;
+  j["wall_time_s"] = summary.wall_time_s;
+  j["fps"] = summary.wall_time_s > 0.0 ? static_cast<double>(summary.frames) / summary.wall_time_s : 0.0;
+  j["gsd_m"] = options_.gsd_m;
+  std::ofstream out = open("summary.json");
+  out << j.dump(2) << "\n";
+}
+
+}  // namespace uavmot

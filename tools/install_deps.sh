@@ -1,0 +1,36 @@
+#!/usr/bin/env bash
+# Installs every Debian package uavmot needs to build, test and demo. Idempotent.
+set -euo pipefail
+
+packages=(
+  # build
+  cmake ninja-build g++ ccache pkg-config
+  # middleware: Fast DDS 2.9 and its code generator
+  libfastrtps-dev libfastcdr-dev fastddsgen fastdds-tools
+  # vision and estimation
+  libopencv-dev libeigen3-dev libceres-dev ffmpeg
+  # configuration, CLI, logging, JSON, compression
+  libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libzstd-dev liblz4-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # integration tests: network namespaces, firewall rules, process tools
+  iproute2 nftables procps psmisc python3
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if ((${#missing[@]} == 0)); then
+  echo "install_deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+echo "install_deps: installing ${#missing[@]} packages: ${missing[*]}"
+if [[ $(id -u) -ne 0 ]]; then
+  echo "install_deps: run as root (apt-get needs it)" >&2
+  exit 1
+fi
+export DEBIAN_FRONTEND=noninteractive
+apt-get update -qq
+apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "install_deps: done"
