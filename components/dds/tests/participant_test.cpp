@@ -49,6 +49,7 @@ TEST(Participant, LosslessFramesArriveWholeOverSharedMemory) {
       auto sample = to_msg(frame);
       ASSERT_TRUE(writer->write_reliably(sample, std::chrono::seconds(20)));
     }
+    ASSERT_TRUE(writer->flush(std::chrono::seconds(20)));
   });
   std::vector<uint64_t> received;
   msg::Frame sample;

@@ -100,6 +100,7 @@ int source_main(int argc, char** argv) {
       }
       auto eos = dds::end_of_stream_frame(input.stream_id, frame.index);
       writer->write_reliably(eos, std::chrono::seconds(5));
+      writer->flush(std::chrono::seconds(5));
       health.report(exit_code == kExitOk ? msg::ComponentState::FINISHED : msg::ComponentState::FAILED);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       spdlog::info("published {} frames in {:.2f} s ({:.1f} fps){}", published, seconds, published / std::max(seconds, 1e-9),

@@ -31,12 +31,14 @@ class TopicWriter {
     return false;
   }
 
-  // Lossless publish: writes, then waits until every matched reader has acknowledged the sample.
-  // Readers keep bounded queues, so a slow reader holds the writer back here instead of losing data.
-  // A refused write (history full) is retried after waiting for acknowledgements.
+  // Lossless publish. First waits until every matched reader acknowledged the previous sample,
+  // then writes this one; flush() waits for the last. Readers keep bounded queues, so a slow reader
+  // holds the writer back here instead of losing data, and the wait for the previous sample overlaps
+  // with whatever the caller did since (e.g. decoding the next frame).
   // Returns false only when `timeout` passes without progress or shutdown is requested.
   bool write_reliably(Sample& sample, std::chrono::milliseconds timeout = std::chrono::seconds(30)) {
     const auto deadline = std::chrono::steady_clock::now() + timeout;
+    if (!flush(timeout)) return false;
     while (!writer_->write(&sample)) {
       if (std::chrono::steady_clock::now() > deadline || shutdown_requested()) {
         spdlog::error("{}: write() kept failing for {} ms", topic_, timeout.count());
@@ -45,13 +47,19 @@ class TopicWriter {
       writer_->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(0, 100000000));
     }
     count_sent(sample);
+    return true;
+  }
+
+  // Waits until every matched reader acknowledged everything written; false on timeout or shutdown.
+  bool flush(std::chrono::milliseconds timeout = std::chrono::seconds(30)) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
     while (writer_->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(0, 100000000)) !=
            eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+      if (matched() == 0) return true;  // the readers left; nobody to wait for
       if (std::chrono::steady_clock::now() > deadline || shutdown_requested()) {
-        spdlog::error("{}: sample not acknowledged by every reader within {} ms", topic_, timeout.count());
+        spdlog::error("{}: samples not acknowledged by every reader within {} ms", topic_, timeout.count());
         return false;
       }
-      if (matched() == 0) return true;  // the reader left; nobody to wait for
     }
     return true;
   }
