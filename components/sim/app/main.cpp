@@ -7,7 +7,12 @@
 #include <CLI/CLI.hpp>
 
 #include "uavmot/core/error.hpp"
+#include <opencv2/imgcodecs.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "uavmot/sim/preview.hpp"
 #include "uavmot/sim/scenario.hpp"
+#include "uavmot/sim/simulator.hpp"
 #include "uavmot/sim/sequence_writer.hpp"
 
 int main(int argc, char** argv) {
@@ -26,6 +31,12 @@ int main(int argc, char** argv) {
   app.add_option("--out", out_dir, "output folder (created)");
   app.add_option("--frames", frames, "override the number of frames")->check(CLI::Range(1, 100000));
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
+  std::string preview_file;
+  int preview_frame = 1;
+  double preview_scale = 1.0;
+  app.add_option("--preview", preview_file, "instead of a sequence, write one frame with its ground truth drawn (PNG)");
+  app.add_option("--preview-frame", preview_frame, "frame for --preview (1-based)")->check(CLI::PositiveNumber);
+  app.add_option("--preview-scale", preview_scale, "enlargement for --preview")->check(CLI::Range(0.1, 8.0));
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -41,7 +52,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (preset.empty() && scenario_file.empty()) throw uavmot::InputError("give --preset NAME or --scenario FILE.yaml");
-    if (out_dir.empty()) throw uavmot::InputError("give --out DIR");
+    if (out_dir.empty() && preview_file.empty()) throw uavmot::InputError("give --out DIR");
     uavmot::sim::Scenario scenario;
     try {
       scenario = preset.empty() ? uavmot::sim::load_scenario_file(scenario_file) : uavmot::sim::preset_scenario(preset);
@@ -52,6 +63,19 @@ int main(int argc, char** argv) {
     uavmot::sim::validate_scenario(scenario);
     std::cerr << "uavmot-sim: scenario '" << scenario.name << "', " << scenario.frames << " frames "
               << scenario.camera.width << "x" << scenario.camera.height << ", seed " << seed << " -> " << out_dir << "\n";
+    if (!preview_file.empty()) {
+      if (preview_frame > scenario.frames) throw uavmot::InputError("--preview-frame is beyond the last frame");
+      scenario.frames = preview_frame;
+      uavmot::sim::Simulator sim(scenario, seed);
+      uavmot::sim::SimFrame frame;
+      while (sim.next(frame)) {
+      }
+      uavmot::sim::PreviewOptions options;
+      options.scale = preview_scale;
+      if (!cv::imwrite(preview_file, uavmot::sim::draw_ground_truth(frame, options)))
+        throw uavmot::InputError("cannot write '" + preview_file + "'");
+      return 0;
+    }
     int last_percent = -1;
     const auto progress = [&](int done, int total) {
       if (quiet) return;
