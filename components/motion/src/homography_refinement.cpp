@@ -4,6 +4,7 @@
 #include <memory>
 
 #include <ceres/ceres.h>
+#include <opencv2/core.hpp>
 
 namespace uavmot::motion {
 namespace {
