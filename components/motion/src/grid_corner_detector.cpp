@@ -89,8 +89,9 @@ std::vector<Candidate> cell_candidates(const cv::Mat& gray, const cv::Rect& cell
 
 }  // namespace
 
-std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
-                                                const MotionOptions& o) {
+// Shared by both entry points; `retry_at` (may be null) holds the empty-cell back-off.
+std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
+                                         const MotionOptions& o, std::vector<int64_t>* retry_at, int64_t call) {
   std::vector<cv::Point2f> added;
   int budget = o.max_features - static_cast<int>(existing.size());
   if (budget <= 0 || gray.empty()) return added;
@@ -106,9 +107,14 @@ std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::
     for (int cx = 0; cx < cols && budget > 0; ++cx) {
       const int index = cy * cols + cx;
       if (buckets.count(index) >= o.features_per_cell) continue;
+      if (retry_at && (*retry_at)[static_cast<size_t>(index)] > call) continue;
       const cv::Rect area = cv::Rect(cx * cell, cy * cell, cell, cell) & usable;
       if (area.width <= 0 || area.height <= 0) continue;
-      for (const auto& c : cell_candidates(gray, area, o)) {
+      const auto candidates = cell_candidates(gray, area, o);
+      if (retry_at) {
+        (*retry_at)[static_cast<size_t>(index)] = candidates.empty() ? call + o.empty_cell_retry_frames : 0;
+      }
+      for (const auto& c : candidates) {
         const cv::Point2f p(static_cast<float>(c.x), static_cast<float>(c.y));
         if (!buckets.is_free(p)) continue;
         buckets.add(p);
@@ -119,6 +125,21 @@ std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::
     }
   }
   return added;
+}
+
+std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
+                                                const MotionOptions& o) {
+  return detect_in_cells(gray, existing, o, nullptr, 0);
+}
+
+std::vector<cv::Point2f> GridCornerDetector::detect(const cv::Mat& gray, const std::vector<cv::Point2f>& existing) {
+  const int cell = options_.cell_size_px;
+  const size_t cells = static_cast<size_t>(((gray.cols + cell - 1) / cell) * ((gray.rows + cell - 1) / cell));
+  if (gray.size() != size_ || retry_at_.size() != cells) {
+    size_ = gray.size();
+    retry_at_.assign(cells, 0);
+  }
+  return detect_in_cells(gray, existing, options_, &retry_at_, calls_++);
 }
 
 }  // namespace uavmot::motion

@@ -86,7 +86,7 @@ Homography refine_homography(const Homography& initial, const std::vector<cv::Po
     problem.AddResidualBlock(cost, loss.get(), params);
   }
   ceres::Solver::Options solver_options;
-  solver_options.linear_solver_type = ceres::DENSE_QR;
+  solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   solver_options.num_threads = 1;
   solver_options.max_num_iterations = o.refine_max_iterations;
   solver_options.logging_type = ceres::SILENT;

@@ -39,7 +39,10 @@ TrackedFeature to_output(const LiveFeature& f) {
 
 class MotionEstimator::Impl {
  public:
-  Impl(MotionOptions options, SceneInfo scene) : options_(std::move(options)), scene_(scene) { validate(options_); }
+  Impl(MotionOptions options, SceneInfo scene)
+      : options_(std::move(options)), scene_(scene), detector_(options_) {
+    validate(options_);
+  }
 
   MotionEstimate process(const Frame& frame);
   void reset() {
@@ -47,6 +50,7 @@ class MotionEstimator::Impl {
     features_.clear();
     last_motion_ = Homography::eye();
     last_valid_ = false;
+    detector_.reset();
   }
   const MotionOptions& options() const { return options_; }
 
@@ -58,6 +62,7 @@ class MotionEstimator::Impl {
 
   MotionOptions options_;
   SceneInfo scene_;
+  GridCornerDetector detector_;
   Pyramid previous_;
   std::vector<LiveFeature> features_;  // ordered by id
   uint64_t next_id_ = 1;
@@ -175,7 +180,7 @@ void MotionEstimator::Impl::detect_new_features(const cv::Mat& gray) {
   std::vector<cv::Point2f> existing;
   existing.reserve(features_.size());
   for (const auto& f : features_) existing.push_back(f.position);
-  for (const auto& p : detect_missing_corners(gray, existing, options_)) {
+  for (const auto& p : detector_.detect(gray, existing)) {
     LiveFeature f;
     f.id = next_id_++;
     f.position = p;

@@ -7,7 +7,7 @@ namespace uavmot::motion {
 MotionOptions load_motion_options(const ConfigNode& node) {
   MotionOptions o;
   node.expect_only({"max_features", "cell_size_px", "features_per_cell", "min_distance_px", "corner_block_size",
-                    "min_corner_response", "border_px", "lk_window_px", "pyramid_levels", "lk_max_iterations",
+                    "min_corner_response", "border_px", "empty_cell_retry_frames", "lk_window_px", "pyramid_levels", "lk_max_iterations",
                     "lk_epsilon_px", "backward_levels", "max_forward_backward_px",
                     "predict_with_previous_homography", "robust_method", "ransac_threshold_px",
                     "ransac_max_iterations", "ransac_confidence", "min_inliers", "min_inlier_ratio",
@@ -22,6 +22,7 @@ MotionOptions load_motion_options(const ConfigNode& node) {
   node.read("corner_block_size", o.corner_block_size, 3, 15);
   node.read("min_corner_response", o.min_corner_response, 0.0, 1.0);
   node.read("border_px", o.border_px, 0, 256);
+  node.read("empty_cell_retry_frames", o.empty_cell_retry_frames, 1, 1000);
   node.read("lk_window_px", o.lk_window_px, 5, 63);
   node.read("pyramid_levels", o.pyramid_levels, 0, 6);
   node.read("lk_max_iterations", o.lk_max_iterations, 1, 200);
@@ -78,6 +79,7 @@ void validate(const MotionOptions& o) {
   require(o.corner_block_size >= 3 && o.corner_block_size % 2 == 1, "corner_block_size must be odd and >= 3");
   require(o.min_corner_response >= 0.0, "min_corner_response must be >= 0");
   require(o.border_px >= 0, "border_px must be >= 0");
+  require(o.empty_cell_retry_frames >= 1, "empty_cell_retry_frames must be >= 1");
   require(o.lk_window_px >= 5 && o.lk_window_px % 2 == 1, "lk_window_px must be odd and >= 5");
   require(o.pyramid_levels >= 0 && o.pyramid_levels <= 6, "pyramid_levels must be in [0, 6]");
   require(o.backward_levels >= 0 && o.backward_levels <= o.pyramid_levels,

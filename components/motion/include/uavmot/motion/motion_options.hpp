@@ -15,15 +15,16 @@ struct MotionOptions {
   int features_per_cell = 1;        // target features per grid cell
   double min_distance_px = 10.0;    // no new corner closer than this to any live feature
   int corner_block_size = 5;        // Shi-Tomasi neighbourhood (px)
-  double min_corner_response = 2e-4;  // absolute minimum eigenvalue (cv::cornerMinEigenVal units)
+  double min_corner_response = 3e-4;  // absolute minimum eigenvalue (cv::cornerMinEigenVal units)
   int border_px = 8;                // features this close to the image border are not used
+  int empty_cell_retry_frames = 4;  // a cell without any corner is searched again after this many frames
 
   // --- Pyramidal Lucas-Kanade with forward-backward check ----------------------------------
-  int lk_window_px = 13;            // odd window side
+  int lk_window_px = 11;            // odd window side
   int pyramid_levels = 3;           // levels above the full-resolution image (maxLevel)
   int lk_max_iterations = 20;
   double lk_epsilon_px = 0.01;      // stop when an update is smaller than this
-  int backward_levels = 1;          // pyramid levels for the backward check (starts at the answer)
+  int backward_levels = 0;          // pyramid levels for the backward check (starts at the answer)
   double max_forward_backward_px = 0.5;
   bool predict_with_previous_homography = true;  // initial flow from the last camera motion
 
