@@ -139,17 +139,19 @@ cv::Mat WarpedSequence::frame(int k) const {
   return image;
 }
 
-int WarpedSequence::patch_at(int k, const cv::Point2d& p, double margin) const {
+int WarpedSequence::patch_at(int k, const cv::Point2d& p, double inner_margin, double outer_margin) const {
   const cv::Point2d g = apply_homography(ground_to_frame(k).inv(), p);
   int result = -1;
   for (size_t i = 0; i < options_.patches.size(); ++i) {
     const cv::Point2d c = patch_corner(static_cast<int>(i), k);
     const cv::Size size = options_.patches[i].size;
+    const double margin = outer_margin;
     const bool inside_outer = g.x > c.x - 0.5 - margin && g.y > c.y - 0.5 - margin &&
                               g.x < c.x + size.width - 0.5 + margin && g.y < c.y + size.height - 0.5 + margin;
     if (!inside_outer) continue;
-    const bool inside_inner = g.x > c.x - 0.5 + margin && g.y > c.y - 0.5 + margin &&
-                              g.x < c.x + size.width - 0.5 - margin && g.y < c.y + size.height - 0.5 - margin;
+    const double inner = inner_margin;
+    const bool inside_inner = g.x > c.x - 0.5 + inner && g.y > c.y - 0.5 + inner &&
+                              g.x < c.x + size.width - 0.5 - inner && g.y < c.y + size.height - 0.5 - inner;
     if (!inside_inner) return -2;
     result = static_cast<int>(i);
   }

@@ -46,9 +46,10 @@ class WarpedSequence {
   // Exact homography frame k-1 -> frame k (identity for k = 1).
   Homography true_homography(int k) const;
 
-  // Index of the patch that covers frame point p in frame k, shrunk by `margin` px;
-  // -1 if none, -2 if p is within `margin` of a patch border (ambiguous).
-  int patch_at(int k, const cv::Point2d& p, double margin) const;
+  // Index of the patch that covers frame point p in frame k, shrunk by `inner_margin` px; -1 if
+  // none; -2 if p lies in the band from `inner_margin` inside to `outer_margin` outside a patch
+  // border (ambiguous: a tracking window there sees both the patch and the ground).
+  int patch_at(int k, const cv::Point2d& p, double inner_margin, double outer_margin) const;
   // Velocity of patch i relative to the ground, in px/frame of frame k at point p.
   cv::Vec2d relative_velocity(int patch, int k, const cv::Point2d& p) const;
 
