@@ -132,10 +132,11 @@ std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::
   return detect_in_cells(gray, existing, o, nullptr, 0);
 }
 
-std::vector<cv::Point2f> GridCornerDetector::detect(const cv::Mat& gray, const std::vector<cv::Point2f>& existing) {
+std::vector<cv::Point2f> GridCornerDetector::detect(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
+                                                    bool continuous) {
   const int cell = options_.cell_size_px;
   const size_t cells = static_cast<size_t>(((gray.cols + cell - 1) / cell) * ((gray.rows + cell - 1) / cell));
-  if (gray.size() != size_ || retry_at_.size() != cells) {
+  if (!continuous || gray.size() != size_ || retry_at_.size() != cells) {
     size_ = gray.size();
     retry_at_.assign(cells, 0);
   }

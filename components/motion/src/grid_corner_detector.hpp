@@ -21,11 +21,13 @@ std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::
 
 // The same, remembering cells that had no corner at all (flat ground, sky, a blank frame) and
 // searching them again only every `empty_cell_retry_frames` calls, so texture-less areas do not
-// cost a corner search every frame.
+// cost a corner search every frame. With `continuous` false (first frame, after an invalid one)
+// every cell is searched and the back-off starts afresh: after a blank frame, the next frame
+// must be searched everywhere.
 class GridCornerDetector {
  public:
   explicit GridCornerDetector(const MotionOptions& options) : options_(options) {}
-  std::vector<cv::Point2f> detect(const cv::Mat& gray, const std::vector<cv::Point2f>& existing);
+  std::vector<cv::Point2f> detect(const cv::Mat& gray, const std::vector<cv::Point2f>& existing, bool continuous);
   void reset() { retry_at_.clear(); }
 
  private:

@@ -58,7 +58,7 @@ class MotionEstimator::Impl {
   // Tracks the live features into `current`; returns whether the frame pair gave a valid
   // homography (then the survivors replace features_).
   bool track_and_estimate(const Pyramid& current, MotionEstimate& out);
-  void detect_new_features(const cv::Mat& gray);
+  void detect_new_features(const cv::Mat& gray, bool continuous);
 
   MotionOptions options_;
   SceneInfo scene_;
@@ -100,7 +100,7 @@ MotionEstimate MotionEstimator::Impl::process(const Frame& frame) {
   last_valid_ = valid;
   last_motion_ = valid ? out.homography : Homography::eye();
 
-  detect_new_features(gray_);
+  detect_new_features(gray_, valid);
   previous_ = std::move(current);
   gray_.release();  // never keep a reference to the caller's buffer
 
@@ -176,11 +176,11 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   return true;
 }
 
-void MotionEstimator::Impl::detect_new_features(const cv::Mat& gray) {
+void MotionEstimator::Impl::detect_new_features(const cv::Mat& gray, bool continuous) {
   std::vector<cv::Point2f> existing;
   existing.reserve(features_.size());
   for (const auto& f : features_) existing.push_back(f.position);
-  for (const auto& p : detector_.detect(gray, existing)) {
+  for (const auto& p : detector_.detect(gray, existing, continuous)) {
     LiveFeature f;
     f.id = next_id_++;
     f.position = p;
