@@ -33,9 +33,13 @@ TEST(FuseAccumulators, SumsOrMultipliesPixelwise) {
 TEST(AdaptiveThreshold, IsTheQuantileButAtLeastTheFloor) {
   cv::Mat acc(1, 101, CV_32F);
   for (int i = 0; i <= 100; ++i) acc.at<float>(100 - i) = static_cast<float>(i);
-  EXPECT_DOUBLE_EQ(adaptive_threshold(acc, 0.8, 0.0), 80.0);
-  EXPECT_DOUBLE_EQ(adaptive_threshold(acc, 0.5, 0.0), 50.0);
+  const double resolution = 100.0 / 4095.0;
+  EXPECT_NEAR(adaptive_threshold(acc, 0.8, 0.0), 80.0, resolution);
+  EXPECT_NEAR(adaptive_threshold(acc, 0.5, 0.0), 50.0, resolution);
+  EXPECT_NEAR(adaptive_threshold(acc, 0.0, 0.0), 0.0, resolution);
+  EXPECT_NEAR(adaptive_threshold(acc, 1.0, 0.0), 100.0, resolution);
   EXPECT_DOUBLE_EQ(adaptive_threshold(acc, 0.5, 70.0), 70.0);
+  EXPECT_DOUBLE_EQ(adaptive_threshold(cv::Mat::zeros(3, 3, CV_32F), 0.5, 12.0), 12.0);
 }
 
 TEST(ExtractBlobs, OutlinesOfTwoNearbyRectanglesStaySeparate) {

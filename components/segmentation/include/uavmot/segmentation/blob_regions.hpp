@@ -20,7 +20,8 @@ cv::Mat normalise_accumulator(const cv::Mat& acc, double reference_max);
 // to [0, 255]. All inputs must have the same size and type CV_32F.
 cv::Mat fuse_accumulators(const std::vector<cv::Mat>& normalised, FusionRule rule);
 
-// The `quantile` quantile (0..1) of the accumulator's values, but at least `min_value`.
+// The `quantile` quantile (0..1) of the accumulator's values (to within 1/4096 of its maximum,
+// from a histogram), but at least `min_value`.
 double adaptive_threshold(const cv::Mat& acc, double quantile, double min_value);
 
 struct Blob {

@@ -54,7 +54,7 @@ enum class BoxFit { Moments, MinAreaRect };
 // Spatial fusion, thresholding and blob -> region conversion (paper III-B/C).
 struct RegionOptions {
   // The image window around a cluster is its box's bounds plus this margin (metres).
-  double window_margin_m = 3.0;
+  double window_margin_m = 2.0;
   // Accumulators are mapped to [0, 255] by dividing by their window maximum, but never by less
   // than the response to a step edge of this contrast (grey levels): a window that holds only
   // noise stays dark instead of being stretched to full scale.
