@@ -73,12 +73,13 @@ double adaptive_threshold(const cv::Mat& acc, double quantile, double min_value)
 }
 
 std::vector<Blob> extract_blobs(const cv::Mat& acc, double threshold, int closing_size_px, double edge_band_px,
-                                BoxFit fit, int min_pixels) {
+                                BoxFit fit, int connectivity, int min_pixels) {
+  if (connectivity != 4 && connectivity != 8) throw InvalidArgument("extract_blobs: connectivity must be 4 or 8");
   std::vector<Blob> blobs;
   if (acc.empty()) return blobs;
   cv::Mat binary = (acc >= std::max(threshold, 1e-6));
   cv::Mat labels, stats, centroids;
-  const int count = cv::connectedComponentsWithStats(binary, labels, stats, centroids, 8, CV_32S);
+  const int count = cv::connectedComponentsWithStats(binary, labels, stats, centroids, connectivity, CV_32S);
   const int pad = closing_size_px / 2 + 1;
   const cv::Mat element = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(closing_size_px, closing_size_px));
   for (int label = 1; label < count; ++label) {

@@ -59,6 +59,7 @@ void validate(const SegmentationOptions& o) {
   require(in_range(r.min_edge_contrast, 0.1, 255.0), "min_edge_contrast", "in [0.1, 255]");
   require(in_range(r.threshold_quantile, 0.0, 1.0), "threshold_quantile", "in [0, 1]");
   require(in_range(r.threshold_min_fraction, 0.0, 1.0), "threshold_min_fraction", "in [0, 1]");
+  require(r.connectivity == 0 || r.connectivity == 4 || r.connectivity == 8, "connectivity", "0, 4 or 8");
   require(r.closing_size_px >= 1 && r.closing_size_px <= 31 && r.closing_size_px % 2 == 1, "closing_size_px", "odd in [1, 31]");
   require(in_range(r.edge_band_px, 0.0, 10.0), "edge_band_px", "in [0, 10]");
   require(in_range(r.min_length_factor, 0.0, 100.0), "min_length_factor", "in [0, 100]");
@@ -75,7 +76,7 @@ SegmentationOptions load_segmentation_options(const ConfigNode& node) {
   node.expect_only({"method", "link_distance_m", "link_speed_difference_mps", "velocity_sigma_factor", "min_features",
                     "korn_sigmas_px", "morphological_sizes_px", "lbp_neighbours", "lbp_radii_px", "lbp_min_stddev",
                     "window_margin_m", "min_edge_contrast", "fusion_rule", "threshold_quantile",
-                    "threshold_min_fraction", "closing_size_px", "box_fit", "edge_band_px", "min_length_factor",
+                    "threshold_min_fraction", "connectivity", "closing_size_px", "box_fit", "edge_band_px", "min_length_factor",
                     "max_length_factor", "min_width_factor", "max_width_factor", "min_supporting_features",
                     "support_margin_px", "fallback_to_cluster_box", "duplicate_overlap"});
   std::string method = to_string(o.method);
@@ -106,6 +107,8 @@ SegmentationOptions load_segmentation_options(const ConfigNode& node) {
   r.fusion_rule = rule == "sum" ? FusionRule::Sum : FusionRule::Product;
   node.read("threshold_quantile", r.threshold_quantile, 0.0, 1.0);
   node.read("threshold_min_fraction", r.threshold_min_fraction, 0.0, 1.0);
+  node.read("connectivity", r.connectivity, 0, 8);
+  if (r.connectivity != 0 && r.connectivity != 4 && r.connectivity != 8) node.fail("connectivity", "must be 0 (by method), 4 or 8");
   node.read("closing_size_px", r.closing_size_px, 1, 31);
   if (r.closing_size_px % 2 == 0) node.fail("closing_size_px", "must be odd");
   std::string fit = r.box_fit == BoxFit::Moments ? "moments" : "min_area_rect";

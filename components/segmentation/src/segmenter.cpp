@@ -52,6 +52,27 @@ double covered_fraction(const OrientedBox& candidate, const OrientedBox& kept) {
 
 }  // namespace
 
+std::optional<Region> Segmenter::uncovered_features_region(const FeatureCluster& cluster,
+                                                           const std::vector<cv::Point2d>& feature_positions,
+                                                           const std::vector<Region>& regions) const {
+  std::vector<cv::Point2d> uncovered;
+  for (const auto& p : feature_positions) {
+    const bool covered = std::any_of(regions.begin(), regions.end(), [&](const Region& r) {
+      OrientedBox grown = r.box;
+      grown.length += 2.0 * options_.regions.support_margin_px;
+      grown.width += 2.0 * options_.regions.support_margin_px;
+      return box_contains(grown, p);
+    });
+    if (!covered) uncovered.push_back(p);
+  }
+  if (static_cast<int>(uncovered.size()) < std::max(2, options_.clustering.min_features)) return std::nullopt;
+  Region region = cluster_region(cluster);
+  region.box = box_around_features(uncovered, cluster.velocity, scene_.metres_to_px(scene_.vehicle_length_m),
+                                   scene_.metres_to_px(scene_.vehicle_width_m));
+  region.score = static_cast<double>(uncovered.size()) / static_cast<double>(feature_positions.size());
+  return region;
+}
+
 SegmentationInput make_segmentation_input(const Frame& frame, const std::vector<cv::Rect>& rois) {
   SegmentationInput input;
   input.stream_id = frame.stream_id;
@@ -135,11 +156,12 @@ std::vector<Region> Segmenter::segment_window(const cv::Mat& gray, const cv::Rec
   const bool summed = options_.method == SegmentationMethod::Fusion && r.fusion_rule == FusionRule::Sum;
   const double full_scale = summed ? 3.0 * 255.0 : 255.0;
   const double threshold = adaptive_threshold(acc, r.threshold_quantile, r.threshold_min_fraction * full_scale);
+  const int connectivity = r.connectivity != 0 ? r.connectivity : options_.method == SegmentationMethod::Lbp ? 8 : 4;
 
   const double vehicle_length = scene_.metres_to_px(scene_.vehicle_length_m);
   const double vehicle_width = scene_.metres_to_px(scene_.vehicle_width_m);
   std::vector<Region> regions;
-  for (Blob& blob : extract_blobs(acc, threshold, r.closing_size_px, r.edge_band_px, r.box_fit)) {
+  for (Blob& blob : extract_blobs(acc, threshold, r.closing_size_px, r.edge_band_px, r.box_fit, connectivity)) {
     blob.box.cx += window.x;
     blob.box.cy += window.y;
     const OrientedBox& box = blob.box;
@@ -221,9 +243,14 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
     } else {
       ++stats_.windows_without_pixels;
     }
-    if (regions.empty() && options_.regions.fallback_to_cluster_box) {
-      ++stats_.fallback_regions;
-      regions.push_back(cluster_region(c));
+    if (options_.regions.fallback_to_cluster_box) {
+      if (regions.empty()) {
+        ++stats_.fallback_regions;
+        regions.push_back(cluster_region(c));
+      } else if (auto extra = uncovered_features_region(c, feature_positions, regions)) {
+        ++stats_.fallback_regions;
+        regions.push_back(*extra);
+      }
     }
     candidates.insert(candidates.end(), regions.begin(), regions.end());
   }

@@ -30,11 +30,11 @@ struct Blob {
   int pixel_count = 0;         // above-threshold pixels
 };
 
-// Thresholds `acc` (pixels >= threshold and > 0), labels 8-connected components, closes and
+// Thresholds `acc` (pixels >= threshold and > 0), labels 4- or 8-connected components, closes and
 // hole-fills each component on its own (so closing never joins two components) and fits an
 // oriented box to each (see BoxFit), minus `edge_band_px` on every side. Components with fewer
 // than `min_pixels` are ignored. Blobs come in label order (raster order of their first pixel).
 std::vector<Blob> extract_blobs(const cv::Mat& acc, double threshold, int closing_size_px, double edge_band_px,
-                                BoxFit fit = BoxFit::Moments, int min_pixels = 3);
+                                BoxFit fit = BoxFit::Moments, int connectivity = 8, int min_pixels = 3);
 
 }  // namespace uavmot::segmentation

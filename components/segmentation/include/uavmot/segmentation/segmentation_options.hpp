@@ -31,8 +31,10 @@ struct GradientOptions {
   // per scale; the accumulator is the sum of the magnitudes over these sigmas (px).
   std::vector<double> korn_sigmas_px = {0.7, 1.0, 1.4};
   // Morphological gradient, eq. (1): sum over square structuring elements of these side
-  // lengths (odd, px) of dilation minus erosion.
-  std::vector<int> morphological_sizes_px = {3, 5};
+  // lengths (odd, px) of dilation minus erosion. Default is the single 3 x 3 element: with
+  // {3, 5} the 5 x 5 term widens the band by a pixel on each side, which bridges the ~4 px gap
+  // between cars driving side by side at the paper's scale (docs/segmentation.md has figures).
+  std::vector<int> morphological_sizes_px = {3};
   // LBP gradient, eq. (2): riu2 patterns with this many neighbours on circles of these radii
   // (px); accepted texture primitives add the neighbours' standard deviation.
   int lbp_neighbours = 8;
@@ -65,6 +67,11 @@ struct RegionOptions {
   // but at least `threshold_min_fraction` of the accumulator's full scale.
   double threshold_quantile = 0.8;
   double threshold_min_fraction = 0.5;
+  // Pixel connectivity of the connected components: 4, 8, or 0 = by method: 8 for lbp (its
+  // accumulator is sparse, accepted pixels often touch only diagonally) and 4 for the dense
+  // korn, morphological and fusion accumulators (8 would leak across the thin diagonal gap
+  // between two cars driving side by side at an oblique angle).
+  int connectivity = 0;
   // Side (px, odd) of the square element used to close each connected component on its own
   // (components are labelled first, so closing never joins two of them).
   int closing_size_px = 3;
@@ -82,7 +89,9 @@ struct RegionOptions {
   int min_supporting_features = 1;
   double support_margin_px = 1.5;
   // When no blob of a cluster is plausible and supported, return the cluster's box instead
-  // (marked method=clustering) so that a low-contrast object is not lost.
+  // (marked method=clustering) so that a low-contrast object is not lost; likewise, when at
+  // least max(2, min_features) of a cluster's features lie in no kept region, add the box
+  // around those features (a second car whose blob was rejected).
   bool fallback_to_cluster_box = true;
   // A region whose box is covered by an earlier region's box for more than this fraction of
   // its area is a duplicate (nested blob, or the same blob seen from two cluster windows).

@@ -15,6 +15,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -53,7 +54,7 @@ struct SegmentationStats {
   size_t windows = 0;                 // cluster windows segmented
   size_t windows_without_pixels = 0;  // no usable crop covered the window
   size_t invalid_crops = 0;           // crop with empty pixels, wrong type or size != roi
-  size_t fallback_regions = 0;        // clusters that kept their cluster box
+  size_t fallback_regions = 0;        // feature boxes added where the gradients found nothing
   size_t duplicate_regions = 0;       // regions dropped as duplicates of an earlier one
 };
 
@@ -79,6 +80,11 @@ class Segmenter {
   std::vector<FeatureCluster> cluster(const MotionEstimate& motion, cv::Size image_size, ClusteringStats* stats) const;
   cv::Rect window_of(const FeatureCluster& cluster, cv::Size image_size) const;
   cv::Mat accumulator(const cv::Mat& gray) const;
+  // A box (method=clustering) around the cluster's features that no region explains, when there
+  // are enough of them to be an object the gradients missed.
+  std::optional<Region> uncovered_features_region(const FeatureCluster& cluster,
+                                                  const std::vector<cv::Point2d>& feature_positions,
+                                                  const std::vector<Region>& regions) const;
   std::vector<Region> segment_window(const cv::Mat& gray, const cv::Rect& window, const FeatureCluster& cluster,
                                      const std::vector<cv::Point2d>& feature_positions) const;
 
