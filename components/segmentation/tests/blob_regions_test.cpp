@@ -92,6 +92,14 @@ TEST(ExtractBlobs, MomentBoxIsUnbiasedOnARotatedRectangle) {
   EXPECT_NEAR(hull[0].box.angle_deg, 30.0, 3.0);
 }
 
+TEST(ExtractBlobs, FourConnectivityKeepsDiagonallyTouchingBlobsApart) {
+  cv::Mat acc = cv::Mat::zeros(20, 20, CV_32F);
+  acc(cv::Rect(2, 2, 6, 6)).setTo(100);
+  acc(cv::Rect(8, 8, 6, 6)).setTo(100);  // touches the first only at a corner
+  EXPECT_EQ(extract_blobs(acc, 50.0, 1, 0.0, BoxFit::Moments, 4).size(), 2u);
+  EXPECT_EQ(extract_blobs(acc, 50.0, 1, 0.0, BoxFit::Moments, 8).size(), 1u);
+}
+
 TEST(ExtractBlobs, NothingAboveThresholdGivesNoBlob) {
   EXPECT_TRUE(extract_blobs(cv::Mat::zeros(20, 20, CV_32F), 10.0, 3, 1.0).empty());
   EXPECT_TRUE(extract_blobs(cv::Mat(), 10.0, 3, 1.0).empty());

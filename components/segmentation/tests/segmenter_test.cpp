@@ -156,6 +156,49 @@ TEST(Segmenter, RotatedCarGetsAnOrientedBox) {
   expect_matches(&result.regions[0], truth, 1.0, 1.5, 3.0);
 }
 
+TEST(Segmenter, FusionSplitsCarsSideBySideAtAnObliqueAngle) {
+  // Two cars at 40 degrees, 4 px apart across their heading: the pixel staircase makes the gap
+  // thin along the image axes.
+  Scene s;
+  s.frame.image = textured_background(cv::Size(200, 160), 100.0, 10.0, 2.0, 11);
+  const double a = 40.0 * CV_PI / 180.0, offset = 6.0 + 4.0;
+  const OrientedBox first{100.0, 80.0, 6.0, 15.0, 40.0};
+  const OrientedBox second{100.0 - std::sin(a) * offset, 80.0 + std::cos(a) * offset, 6.0, 15.0, 40.0};
+  draw_car(s.frame.image, first, 175);
+  draw_car(s.frame.image, second, 150);
+  const cv::Vec2d velocity(1.5 * std::cos(a), 1.5 * std::sin(a));
+  s.motion.features = features_on(first, velocity, 1);
+  for (auto& f : features_on(second, velocity, 11)) s.motion.features.push_back(f);
+
+  Segmenter clustering(with_method(SegmentationMethod::Clustering), test_scene());
+  EXPECT_EQ(clustering.process(s.frame, s.motion).regions.size(), 1u);
+  Segmenter fusion(SegmentationOptions{}, test_scene());
+  const auto result = fusion.process(s.frame, s.motion);
+  ASSERT_EQ(result.regions.size(), 2u);
+  for (const auto& truth : {first, second}) expect_matches(nearest(result.regions, truth), truth, 1.0, 1.5, 4.0);
+}
+
+TEST(Segmenter, FeaturesOfAnInvisibleCarKeepABoxBesideTheSegmentedOne) {
+  // The second car has the background's grey: no gradient, but its features still move.
+  const Scene s = make_scene(kPair, {175, 100}, {2.0, 0.0});
+  Segmenter segmenter(SegmentationOptions{}, test_scene());
+  const auto result = segmenter.process(s.frame, s.motion);
+  ASSERT_EQ(result.regions.size(), 2u);
+  const Region* visible = nearest(result.regions, kPair[0].box());
+  const Region* invisible = nearest(result.regions, kPair[1].box());
+  ASSERT_NE(visible, invisible);
+  EXPECT_EQ(visible->method, SegmentationMethod::Fusion);
+  expect_matches(visible, kPair[0].box(), 1.0, 1.5);
+  EXPECT_EQ(invisible->method, SegmentationMethod::Clustering);
+  EXPECT_NEAR(invisible->box.cx, kPair[1].box().cx, 1.0);
+  EXPECT_NEAR(invisible->box.cy, kPair[1].box().cy, 1.0);
+  EXPECT_EQ(segmenter.last_stats().fallback_regions, 1u);
+
+  SegmentationOptions no_fallback;
+  no_fallback.regions.fallback_to_cluster_box = false;
+  EXPECT_EQ(Segmenter(no_fallback, test_scene()).process(s.frame, s.motion).regions.size(), 1u);
+}
+
 TEST(Segmenter, CropPathGivesTheSameResultAsTheWholeFrame) {
   const Scene s = make_scene(kPair, {175, 160}, {2.0, 0.0});
   Segmenter segmenter(SegmentationOptions{}, test_scene());
