@@ -1,0 +1,130 @@
+#include "uavmot/tracking/split_merge.hpp"
+
+#include <algorithm>
+#include <set>
+
+#include <opencv2/imgproc.hpp>
+
+namespace uavmot::tracking {
+
+bool region_motion(const OrientedBox& box, const FeatureIndex& features, cv::Vec2d& velocity) {
+  std::vector<cv::Vec2d> vs;
+  for (const int i : features.inside(box)) vs.push_back(features.all()[static_cast<size_t>(i)].velocity);
+  if (vs.empty()) return false;
+  velocity = median_velocity(vs);
+  return true;
+}
+
+OrientedBox enclosing_box(const std::vector<OrientedBox>& boxes) {
+  std::vector<cv::Point2f> corners;
+  for (const auto& b : boxes) {
+    for (const auto& c : box_corners(b)) corners.emplace_back(static_cast<float>(c.x), static_cast<float>(c.y));
+  }
+  return oriented_box_from_rotated_rect(cv::minAreaRect(corners));
+}
+
+namespace {
+
+// How many of the track's linked features lie inside `box`.
+int linked_features_inside(const TrackRecord& track, const OrientedBox& box, const FeatureIndex& features) {
+  int n = 0;
+  for (const auto& link : track.features) {
+    const TrackedFeature* f = features.find(link.feature_id);
+    if (f != nullptr && box_contains(box, f->position)) ++n;
+  }
+  return n;
+}
+
+bool fits_inside(const OrientedBox& candidate, const OrientedBox& predicted, double factor) {
+  const double big = std::max(predicted.length, predicted.width) * factor;
+  const double small = std::min(predicted.length, predicted.width) * factor;
+  return candidate.length <= big && candidate.width <= std::max(small, 1.0) + 1.0;
+}
+
+// Split handling for one track and the regions only it validates.
+TrackMeasurement split_measurement(const TrackRecord& track, const OrientedBox& predicted, const std::vector<int>& own,
+                                   const std::vector<double>& overlaps, const std::vector<OrientedBox>& regions,
+                                   const FeatureIndex& features, const TrackerOptions& options,
+                                   std::vector<int>& leftovers) {
+  TrackMeasurement m;
+  m.kind = MeasurementKind::Box;
+  if (own.size() == 1) {
+    m.box = regions[static_cast<size_t>(own[0])];
+    return m;
+  }
+  // Primary region: the one the track's features follow; ties go to the larger overlap.
+  size_t primary = 0;
+  int best_links = -1;
+  double best_overlap = -1.0;
+  for (size_t i = 0; i < own.size(); ++i) {
+    const int links = linked_features_inside(track, regions[static_cast<size_t>(own[i])], features);
+    if (links > best_links || (links == best_links && overlaps[i] > best_overlap)) {
+      primary = i;
+      best_links = links;
+      best_overlap = overlaps[i];
+    }
+  }
+  cv::Vec2d primary_motion;
+  const bool primary_known = region_motion(regions[static_cast<size_t>(own[primary])], features, primary_motion);
+  std::vector<OrientedBox> parts = {regions[static_cast<size_t>(own[primary])]};
+  for (size_t i = 0; i < own.size(); ++i) {
+    if (i == primary) continue;
+    const OrientedBox& candidate = regions[static_cast<size_t>(own[i])];
+    cv::Vec2d motion;
+    const bool known = region_motion(candidate, features, motion);
+    const bool same_motion = !(known && primary_known) || similar_motion(motion, primary_motion, options);
+    std::vector<OrientedBox> grown = parts;
+    grown.push_back(candidate);
+    const OrientedBox union_box = enclosing_box(grown);
+    if (same_motion && fits_inside(union_box, predicted, options.fragment_union_factor)) {
+      parts = std::move(grown);  // a fragment of the same object
+    } else {
+      leftovers.push_back(own[i]);
+    }
+  }
+  m.box = parts.size() == 1 ? parts.front() : enclosing_box(parts);
+  return m;
+}
+
+}  // namespace
+
+SplitMergeResult resolve_split_merge(const RegionAssociation& association, const std::vector<OrientedBox>& regions,
+                                     const std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
+                                     const FeatureIndex& features, const TrackerOptions& options) {
+  SplitMergeResult result;
+  result.measurements.resize(tracks.size());
+  std::vector<int> leftovers;
+  for (size_t t = 0; t < tracks.size(); ++t) {
+    const auto& candidates = association.regions_of_track[t];
+    if (candidates.empty()) continue;
+    std::vector<int> own;
+    std::vector<double> own_overlaps;
+    for (size_t i = 0; i < candidates.size(); ++i) {
+      if (association.tracks_of_region[static_cast<size_t>(candidates[i])].size() == 1) {
+        own.push_back(candidates[i]);
+        own_overlaps.push_back(association.overlap_of_track[t][i]);
+      }
+    }
+    if (!own.empty()) {
+      result.measurements[t] = split_measurement(tracks[t], predicted[t], own, own_overlaps, regions, features, options, leftovers);
+      continue;
+    }
+    // Merge: every region this track sees is shared with another track.
+    TrackMeasurement m;
+    m.merged = true;
+    if (const auto centre = reconstruct_centre(tracks[t], predicted[t], features, options.min_reconstruction_features)) {
+      m.kind = MeasurementKind::Centre;
+      m.centre = *centre;
+    }
+    result.measurements[t] = m;
+  }
+  for (size_t r = 0; r < regions.size(); ++r) {
+    if (association.tracks_of_region[r].empty()) result.free_regions.push_back(static_cast<int>(r));
+  }
+  result.free_regions.insert(result.free_regions.end(), leftovers.begin(), leftovers.end());
+  std::sort(result.free_regions.begin(), result.free_regions.end());
+  result.free_regions.erase(std::unique(result.free_regions.begin(), result.free_regions.end()), result.free_regions.end());
+  return result;
+}
+
+}  // namespace uavmot::tracking
