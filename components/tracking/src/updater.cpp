@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include <Eigen/Cholesky>
+
 namespace uavmot::tracking {
 namespace {
 
@@ -10,7 +12,9 @@ template <int M>
 KalmanState kalman_update(const KalmanState& state, const Eigen::Matrix<double, M, kStateSize>& h,
                           const Eigen::Matrix<double, M, 1>& innovation, const Eigen::Matrix<double, M, M>& r) {
   const Eigen::Matrix<double, M, M> s = h * state.covariance * h.transpose() + r;
-  const Eigen::Matrix<double, kStateSize, M> gain = state.covariance * h.transpose() * s.inverse();
+  // K = P H^T S^-1, solved rather than inverted (S is symmetric positive definite).
+  const Eigen::Matrix<double, kStateSize, M> pht = state.covariance * h.transpose();
+  const Eigen::Matrix<double, kStateSize, M> gain = s.ldlt().solve(pht.transpose()).transpose();
   KalmanState out;
   out.mean = state.mean + gain * innovation;
   // Joseph form keeps the covariance symmetric and positive definite.
