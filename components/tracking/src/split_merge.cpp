@@ -88,9 +88,39 @@ TrackMeasurement split_measurement(const TrackRecord& track, const OrientedBox& 
 
 }  // namespace
 
-SplitMergeResult resolve_split_merge(const RegionAssociation& association, const std::vector<OrientedBox>& regions,
+namespace {
+
+// A tentative track never turns an established track's region into a merge: where a region validates
+// both, the tentative track's claim is dropped (it then misses and is deleted if it was spurious).
+RegionAssociation without_tentative_claims(const RegionAssociation& association, const std::vector<TrackRecord>& tracks) {
+  RegionAssociation out = association;
+  for (auto& claimants : out.tracks_of_region) {
+    const bool has_established = std::any_of(claimants.begin(), claimants.end(), [&](int t) {
+      return tracks[static_cast<size_t>(t)].state != TrackState::Tentative;
+    });
+    if (!has_established || claimants.size() < 2) continue;
+    std::erase_if(claimants, [&](int t) { return tracks[static_cast<size_t>(t)].state == TrackState::Tentative; });
+  }
+  for (size_t t = 0; t < tracks.size(); ++t) {
+    auto& regs = out.regions_of_track[t];
+    auto& overlaps = out.overlap_of_track[t];
+    for (size_t i = regs.size(); i-- > 0;) {
+      const auto& claimants = out.tracks_of_region[static_cast<size_t>(regs[i])];
+      if (!std::binary_search(claimants.begin(), claimants.end(), static_cast<int>(t))) {
+        regs.erase(regs.begin() + static_cast<std::ptrdiff_t>(i));
+        overlaps.erase(overlaps.begin() + static_cast<std::ptrdiff_t>(i));
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+SplitMergeResult resolve_split_merge(const RegionAssociation& gating, const std::vector<OrientedBox>& regions,
                                      const std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
                                      const FeatureIndex& features, const TrackerOptions& options) {
+  const RegionAssociation association = without_tentative_claims(gating, tracks);
   SplitMergeResult result;
   result.measurements.resize(tracks.size());
   std::vector<int> leftovers;

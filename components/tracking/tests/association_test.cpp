@@ -159,3 +159,24 @@ TEST(SplitMerge, FragmentsWithTheSameMotionAreOneMeasurement) {
 
 }  // namespace
 }  // namespace uavmot::tracking
+
+namespace uavmot::tracking {
+namespace {
+
+TEST(SplitMerge, TentativeTrackDoesNotTurnARegionIntoAMerge) {
+  std::vector<TrackRecord> tracks(2);
+  tracks[0].state = TrackState::Confirmed;
+  tracks[1].state = TrackState::Tentative;
+  const std::vector<OrientedBox> predicted = {{100, 100, 5, 15, 0}, {106, 101, 5, 15, 0}};
+  const std::vector<OrientedBox> regions = {{101, 100, 5, 15, 0}};
+  const FeatureIndex none({});
+  const RegionAssociation a = associate_regions(regions, predicted, 0.05);
+  ASSERT_EQ(a.tracks_of_region[0].size(), 2u);
+  const SplitMergeResult r = resolve_split_merge(a, regions, tracks, predicted, none, TrackerOptions{});
+  ASSERT_EQ(r.measurements[0].kind, MeasurementKind::Box);
+  EXPECT_EQ(r.measurements[0].box, regions[0]);
+  EXPECT_EQ(r.measurements[1].kind, MeasurementKind::None);
+}
+
+}  // namespace
+}  // namespace uavmot::tracking

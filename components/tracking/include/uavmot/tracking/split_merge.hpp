@@ -6,6 +6,7 @@
 //  - several regions for one track (split): regions that move alike and together fit the object are
 //    fragments of it and are merged into one box; otherwise the track keeps the region its features
 //    follow and the others are free to start new tracks.
+// A tentative track's claim on a region that an established track also validates is dropped first.
 
 #include <vector>
 
@@ -34,7 +35,7 @@ bool region_motion(const OrientedBox& box, const FeatureIndex& features, cv::Vec
 // The smallest oriented box around all of `boxes`.
 OrientedBox enclosing_box(const std::vector<OrientedBox>& boxes);
 
-SplitMergeResult resolve_split_merge(const RegionAssociation& association, const std::vector<OrientedBox>& regions,
+SplitMergeResult resolve_split_merge(const RegionAssociation& gating, const std::vector<OrientedBox>& regions,
                                      const std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
                                      const FeatureIndex& features, const TrackerOptions& options);
 
