@@ -80,6 +80,7 @@ TrackMeasurement split_measurement(const TrackRecord& track, const OrientedBox& 
       parts = std::move(grown);  // a fragment of the same object
     } else {
       leftovers.push_back(own[i]);
+      m.split = true;
     }
   }
   m.box = parts.size() == 1 ? parts.front() : enclosing_box(parts);

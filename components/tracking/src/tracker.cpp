@@ -155,6 +155,7 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   for (size_t i = 0; i < n; ++i) {
     const TrackMeasurement& m = resolved.measurements[i];
     if (m.kind == MeasurementKind::Box) {
+      if (m.split) open_size_uncertainty(kalman[i], m.box);
       kalman[i] = update_with_box(kalman[i], m.box, box_noise, options_.min_box_size_px);
       region_hit[i] = true;
       may_link[i] = true;

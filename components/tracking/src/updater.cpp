@@ -63,6 +63,14 @@ KalmanState update_with_box(const KalmanState& state, const OrientedBox& measure
   return out;
 }
 
+void open_size_uncertainty(KalmanState& state, const OrientedBox& measured) {
+  const OrientedBox z = align_box_labelling(measured, box_of(state.mean));
+  const double dw = z.width - state.mean(kWidth);
+  const double dl = z.length - state.mean(kLength);
+  state.covariance(kWidth, kWidth) += dw * dw;
+  state.covariance(kLength, kLength) += dl * dl;
+}
+
 KalmanState update_with_position(const KalmanState& state, const cv::Point2d& centre, double sigma_px) {
   Eigen::Matrix<double, 2, kStateSize> h = Eigen::Matrix<double, 2, kStateSize>::Zero();
   h(0, kX) = h(1, kY) = 1.0;

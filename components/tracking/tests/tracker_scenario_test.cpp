@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <set>
 
 #include "synthetic_scene.hpp"
 
@@ -103,6 +104,40 @@ TEST(TrackerScenario, OvertakingKeepsIdentitiesThroughMergeAndSplit) {
   EXPECT_GT(s.matched, 0.95 * s.truth_instances);
   EXPECT_LT(s.mean_position_error, 1.0);
   EXPECT_EQ(s.all_confirmed_ids.size(), 2u);
+}
+
+TEST(TrackerScenario, PairAppearingMergedSplitsIntoTwoTracks) {
+  // Two cars appear as one region (one track), then drive apart: the track keeps one of them, a new
+  // track starts for the other, and both boxes shrink to the single cars quickly.
+  SceneOptions opts;
+  opts.merge_close_objects = true;
+  SyntheticScene scene({car(1, {100, 240}, {1.6, 0.0}), car(2, {102, 245.5}, {1.0, 0.0})}, drifting_camera(), opts);
+  Tracker tracker;
+  int first_separate = 0;
+  scene.edit_regions = [&](int frame, std::vector<Region>& regions, const std::vector<TruthBox>&) {
+    if (regions.size() == 2 && first_separate == 0) first_separate = frame;
+  };
+  std::set<uint64_t> confirmed;
+  for (int k = 1; k <= 120; ++k) {
+    const SyntheticFrame f = scene.next();
+    const TrackList out = tracker.process(f.motion, f.segmentation);
+    for (const auto& t : out.tracks) {
+      if (t.state == TrackState::Confirmed) confirmed.insert(t.id);
+    }
+    if (first_separate == 0 || k < first_separate + 15) continue;
+    // Both cars matched, each by a car-sized box.
+    for (const auto& truth : f.truth) {
+      const Track* best = nullptr;
+      for (const auto& t : out.tracks) {
+        if (intersection_over_union(t.box, truth.box) > 0.5) best = &t;
+      }
+      ASSERT_NE(best, nullptr) << "car " << truth.id << " frame " << k;
+      EXPECT_NEAR(best->box.width, truth.box.width, 1.0);
+      EXPECT_NEAR(best->box.length, truth.box.length, 1.5);
+    }
+  }
+  ASSERT_GT(first_separate, 10);
+  EXPECT_EQ(confirmed.size(), 2u);
 }
 
 TEST(TrackerScenario, RegionSplitIntoTwoPiecesOfOneObjectStaysOneTrack) {

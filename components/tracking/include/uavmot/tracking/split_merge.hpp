@@ -22,6 +22,7 @@ struct TrackMeasurement {
   OrientedBox box;       // kind == Box
   cv::Point2d centre;    // kind == Centre
   bool merged = false;   // in a merge this frame: its features must not be relearnt from this box
+  bool split = false;    // the track gave up other regions: its size may change abruptly
 };
 
 struct SplitMergeResult {

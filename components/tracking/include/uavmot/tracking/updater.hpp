@@ -14,6 +14,10 @@ OrientedBox align_box_labelling(const OrientedBox& measured, const OrientedBox& 
 KalmanState update_with_box(const KalmanState& state, const OrientedBox& measured, const BoxMeasurementNoise& noise,
                             double min_box_size_px);
 
+// Before updating with a region after a split, the old size is no longer evidence: widen the size
+// variance by the squared size innovation so the filter adopts the new size within a few frames.
+void open_size_uncertainty(KalmanState& state, const OrientedBox& measured);
+
 KalmanState update_with_position(const KalmanState& state, const cv::Point2d& centre, double sigma_px);
 
 }  // namespace uavmot::tracking
