@@ -135,7 +135,9 @@ SyntheticFrame SyntheticScene::next() {
   }
   std::map<size_t, std::vector<OrientedBox>> members;
   for (const size_t i : shown) members[root(i)].push_back(out.truth[i].box);
+  std::uniform_real_distribution<double> u01(0.0, 1.0);
   for (const auto& [g_root, boxes] : members) {
+    if (options_.region_miss_probability > 0.0 && u01(rng_) < options_.region_miss_probability) continue;
     OrientedBox b = boxes.size() == 1 ? boxes.front() : enclosing_box(boxes);
     b.cx += n01(rng_) * options_.region_centre_noise_px;
     b.cy += n01(rng_) * options_.region_centre_noise_px;
@@ -145,6 +147,12 @@ SyntheticFrame SyntheticScene::next() {
     Region r;
     r.box = b;
     r.method = SegmentationMethod::Fusion;
+    out.segmentation.regions.push_back(r);
+  }
+  for (int c = 0; c < options_.clutter_regions_per_frame; ++c) {
+    Region r;
+    r.box = OrientedBox{u01(rng_) * options_.image_width, u01(rng_) * options_.image_height, 3.0 + 4.0 * u01(rng_),
+                        8.0 + 10.0 * u01(rng_), normalize_axis_angle_deg(360.0 * u01(rng_))};
     out.segmentation.regions.push_back(r);
   }
   if (edit_regions) edit_regions(k, out.segmentation.regions, out.truth);

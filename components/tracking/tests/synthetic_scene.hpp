@@ -36,6 +36,8 @@ struct SceneOptions {
   bool merge_close_objects = false;  // objects closer than merge_gap_px give one region
   double merge_gap_px = 1.5;
   int static_features = 20;
+  double region_miss_probability = 0.0;  // a moving object's region is dropped this often
+  int clutter_regions_per_frame = 0;     // false regions at random places (no features)
   uint32_t seed = 1;
 };
 

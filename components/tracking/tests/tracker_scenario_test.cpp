@@ -228,6 +228,38 @@ TEST(TrackerScenario, StopAndGoKeepsItsIdentity) {
   EXPECT_GT(s.matched, 0.95 * s.truth_instances);
 }
 
+TEST(TrackerScenario, BusyRoadWithMissesAndClutter) {
+  // Two lanes each way, twelve cars overtaking each other (merged regions while close), 10 % of
+  // regions missed, three false regions per frame, the hovering camera.
+  std::vector<ObjectPath> cars;
+  for (int i = 0; i < 6; ++i) {
+    cars.push_back(car(static_cast<uint64_t>(i + 1), {40.0 + 35.0 * i, 200.0 + 6.0 * (i % 2)}, {1.2 + 0.25 * (i % 3), 0.0}));
+    cars.push_back(car(static_cast<uint64_t>(i + 7), {600.0 - 35.0 * i, 225.0 + 6.0 * (i % 2)}, {-1.0 - 0.3 * (i % 3), 0.0}));
+  }
+  SceneOptions opts;
+  opts.merge_close_objects = true;
+  opts.region_miss_probability = 0.1;
+  opts.clutter_regions_per_frame = 3;
+  SyntheticScene scene(cars, drifting_camera(), opts);
+  int merged = 0;
+  scene.edit_regions = [&](int, std::vector<Region>& regions, const std::vector<TruthBox>& truth) {
+    int moving = 0;
+    for (const auto& t : truth) moving += (t.visible && t.moving) ? 1 : 0;
+    if (static_cast<int>(regions.size()) - 3 < moving - 2) ++merged;  // clearly fewer regions than cars
+  };
+  Tracker tracker;
+  const Score s = run_and_score(scene, tracker, run_for(200));
+  EXPECT_GT(merged, 10);
+  EXPECT_GT(s.matched, 0.95 * s.truth_instances) << s.matched << " of " << s.truth_instances;
+  EXPECT_LT(s.mean_position_error, 1.0);
+  EXPECT_LT(s.mean_width_error, 1.0);
+  EXPECT_LT(s.mean_length_error, 1.5);
+  int switches = 0;
+  for (const auto& [truth, ids] : s.track_ids_of_truth) switches += static_cast<int>(ids.size()) - 1;
+  EXPECT_LE(switches, 1);
+  EXPECT_LT(s.unmatched_confirmed_tracks, s.matched / 100);  // clutter never confirms
+}
+
 TEST(TrackerScenario, ParkedVehicleGetsNoTrack) {
   ObjectPath parked;
   parked.truth_id = 1;
