@@ -1,7 +1,7 @@
 // Tracker cost against the number of moving objects (synthetic scenes, camera motion, constant
 // object density). Prints a Markdown table; the sequences are generated before timing.
 //
-//   build/bench/tracking_bench [--frames N] [--repeats R]
+//   build/bench/tracking_bench [--frames N] [--repeats R] [--objects N]
 
 #include <algorithm>
 #include <chrono>
@@ -31,12 +31,12 @@ std::vector<SyntheticFrame> make_sequence(int objects, int frames) {
     ObjectPath o;
     o.truth_id = static_cast<uint64_t>(i + 1);
     const double speed = (row % 2 == 0 ? 1.0 : -1.0) * (1.0 + 0.1 * (row % 5));
-    o.ground_centre = straight({200.0 + 60.0 * col, 100.0 + 30.0 * row}, {speed, 0.05 * speed});
+    o.ground_centre = straight({100.0 + 1.6 * frames + 60.0 * col, 100.0 + 30.0 * row}, {speed, 0.05 * speed});
     paths.push_back(o);
   }
   SceneOptions opts;
-  opts.image_width = 400 + 60 * per_row + 2 * frames;
-  opts.image_height = 200 + 30 * rows;
+  opts.image_width = 200 + 60 * per_row + 4 * frames;
+  opts.image_height = 200 + 30 * rows + frames / 2;
   opts.static_features = 10 * objects;
   const cv::Point2d centre(opts.image_width / 2.0, opts.image_height / 2.0);
   SyntheticScene scene(paths, moving_camera({0.4, -0.2}, 0.02, 1.0002, centre), opts);
@@ -50,17 +50,21 @@ std::vector<SyntheticFrame> make_sequence(int objects, int frames) {
 int main(int argc, char** argv) {
   int frames = 100;
   int repeats = 3;
+  int only_objects = 0;  // --objects N: one size only (for profiling)
   for (int i = 1; i + 1 < argc; i += 2) {
     if (std::strcmp(argv[i], "--frames") == 0) frames = std::atoi(argv[i + 1]);
     if (std::strcmp(argv[i], "--repeats") == 0) repeats = std::atoi(argv[i + 1]);
+    if (std::strcmp(argv[i], "--objects") == 0) only_objects = std::atoi(argv[i + 1]);
   }
   if (frames < 10 || repeats < 1) {
-    std::fprintf(stderr, "usage: tracking_bench [--frames N>=10] [--repeats R>=1]\n");
+    std::fprintf(stderr, "usage: tracking_bench [--frames N>=10] [--repeats R>=1] [--objects N]\n");
     return 2;
   }
   std::printf("| moving objects | confirmed tracks (last frame) | ms / frame (best of %d) | us / object / frame |\n", repeats);
   std::printf("|---:|---:|---:|---:|\n");
-  for (const int objects : {10, 20, 50, 100, 200, 300}) {
+  std::vector<int> sizes = {10, 20, 50, 100, 200, 300};
+  if (only_objects > 0) sizes = {only_objects};
+  for (const int objects : sizes) {
     const std::vector<SyntheticFrame> sequence = make_sequence(objects, frames);
     double best_ms = 1e30;
     size_t confirmed = 0;

@@ -80,7 +80,7 @@ TrackMeasurement split_measurement(const TrackRecord& track, const OrientedBox& 
       parts = std::move(grown);  // a fragment of the same object
     } else {
       leftovers.push_back(own[i]);
-      m.split = true;
+      m.size_jump = true;
     }
   }
   m.box = parts.size() == 1 ? parts.front() : enclosing_box(parts);
@@ -116,14 +116,55 @@ RegionAssociation without_tentative_claims(const RegionAssociation& association,
   return out;
 }
 
+// True when `a` is the track that keeps a region over `b`: more region hits, then the lower id.
+bool senior(const TrackRecord& a, const TrackRecord& b) { return a.hits != b.hits ? a.hits > b.hits : a.id < b.id; }
+
+// A shared region no larger than one object, whose tracks move alike, holds one object that was
+// tracked in pieces (over-segmentation at its first frames): the senior track keeps the region and
+// the others, if it was all they saw, are absorbed.
+void absorb_pieces(RegionAssociation& association, const std::vector<OrientedBox>& regions,
+                   const std::vector<TrackRecord>& tracks, const std::vector<cv::Vec2d>& velocities,
+                   const cv::Size2d& max_object_size_px, const TrackerOptions& options, std::vector<bool>& absorbed,
+                   std::vector<bool>& keepers) {
+  if (max_object_size_px.width <= 0.0 || max_object_size_px.height <= 0.0) return;
+  for (size_t r = 0; r < regions.size(); ++r) {
+    auto& claimants = association.tracks_of_region[r];
+    if (claimants.size() < 2) continue;
+    if (regions[r].length > max_object_size_px.height || regions[r].width > max_object_size_px.width) continue;
+    size_t keeper = static_cast<size_t>(claimants.front());
+    for (const int t : claimants) {
+      if (senior(tracks[static_cast<size_t>(t)], tracks[keeper])) keeper = static_cast<size_t>(t);
+    }
+    const bool alike = std::all_of(claimants.begin(), claimants.end(), [&](int t) {
+      return similar_motion(velocities[static_cast<size_t>(t)], velocities[keeper], options);
+    });
+    if (!alike) continue;
+    for (const int t : claimants) {
+      if (static_cast<size_t>(t) == keeper) continue;
+      auto& regs = association.regions_of_track[static_cast<size_t>(t)];
+      auto& overlaps = association.overlap_of_track[static_cast<size_t>(t)];
+      const auto it = std::find(regs.begin(), regs.end(), static_cast<int>(r));
+      overlaps.erase(overlaps.begin() + (it - regs.begin()));
+      regs.erase(it);
+      if (regs.empty()) absorbed[static_cast<size_t>(t)] = true;
+    }
+    claimants = {static_cast<int>(keeper)};
+    keepers[keeper] = true;
+  }
+}
+
 }  // namespace
 
 SplitMergeResult resolve_split_merge(const RegionAssociation& gating, const std::vector<OrientedBox>& regions,
                                      const std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
+                                     const std::vector<cv::Vec2d>& velocities, const cv::Size2d& max_object_size_px,
                                      const FeatureIndex& features, const TrackerOptions& options) {
-  const RegionAssociation association = without_tentative_claims(gating, tracks);
+  RegionAssociation association = without_tentative_claims(gating, tracks);
   SplitMergeResult result;
   result.measurements.resize(tracks.size());
+  result.absorbed.assign(tracks.size(), false);
+  std::vector<bool> keepers(tracks.size(), false);
+  absorb_pieces(association, regions, tracks, velocities, max_object_size_px, options, result.absorbed, keepers);
   std::vector<int> leftovers;
   for (size_t t = 0; t < tracks.size(); ++t) {
     const auto& candidates = association.regions_of_track[t];
@@ -138,6 +179,7 @@ SplitMergeResult resolve_split_merge(const RegionAssociation& gating, const std:
     }
     if (!own.empty()) {
       result.measurements[t] = split_measurement(tracks[t], predicted[t], own, own_overlaps, regions, features, options, leftovers);
+      result.measurements[t].size_jump = result.measurements[t].size_jump || keepers[t];
       continue;
     }
     // Merge: every region this track sees is shared with another track.

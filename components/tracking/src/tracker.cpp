@@ -145,7 +145,10 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
 
   // 3. Regions to tracks, 4. split and merge handling.
   const RegionAssociation association = associate_regions(regions, predicted, options_.min_intersection_fraction);
-  const SplitMergeResult resolved = resolve_split_merge(association, regions, state_.tracks, predicted, features, options_);
+  const cv::Size2d max_object_size(scene_.metres_to_px(scene_.vehicle_width_m) * options_.single_object_size_factor,
+                                   scene_.metres_to_px(scene_.vehicle_length_m) * options_.single_object_size_factor);
+  const SplitMergeResult resolved =
+      resolve_split_merge(association, regions, state_.tracks, predicted, velocities, max_object_size, features, options_);
 
   // 5. Kalman update; a track without a region may be carried by its features alone.
   const BoxMeasurementNoise box_noise = box_measurement_noise(options_);
@@ -155,7 +158,7 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   for (size_t i = 0; i < n; ++i) {
     const TrackMeasurement& m = resolved.measurements[i];
     if (m.kind == MeasurementKind::Box) {
-      if (m.split) open_size_uncertainty(kalman[i], m.box);
+      if (m.size_jump) open_size_uncertainty(kalman[i], m.box);
       kalman[i] = update_with_box(kalman[i], m.box, box_noise, options_.min_box_size_px);
       region_hit[i] = true;
       may_link[i] = true;
@@ -187,6 +190,7 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   std::vector<OrientedBox> live_boxes;
   for (size_t i = 0; i < n; ++i) {
     TrackRecord& t = state_.tracks[i];
+    if (resolved.absorbed[i]) continue;  // a piece of another track's object
     record_frame(t, region_hit[i], supported[i], options_);
     switch (decide_fate(t, options_)) {
       case Fate::Keep:

@@ -52,6 +52,7 @@ const std::vector<DoubleField>& double_fields() {
       {"feature_reconstruction_outlier_px", &TrackerOptions::feature_reconstruction_outlier_px, 1e-3, 1000.0},
       {"feature_uv_smoothing", &TrackerOptions::feature_uv_smoothing, 0.0, 1.0},
       {"fragment_union_factor", &TrackerOptions::fragment_union_factor, 1.0, 10.0},
+      {"single_object_size_factor", &TrackerOptions::single_object_size_factor, 0.0, 100.0},
       {"init_max_overlap_fraction", &TrackerOptions::init_max_overlap_fraction, 0.0, 1.0},
       {"min_region_area_px", &TrackerOptions::min_region_area_px, 0.0, 1e6},
       {"reacquire_radius_m", &TrackerOptions::reacquire_radius_m, 0.0, 1000.0},

@@ -18,6 +18,8 @@ TrackedFeature feature(uint64_t id, cv::Point2d p, cv::Vec2d v, uint32_t age = 5
   return f;
 }
 
+std::vector<cv::Vec2d> velocities_of(size_t n) { return std::vector<cv::Vec2d>(n, cv::Vec2d(2, 0)); }
+
 TEST(RegionAssociation, SmallOverlapValidatesNoOverlapDoesNot) {
   const OrientedBox track{100, 100, 5, 15, 0};
   EXPECT_TRUE(gate(OrientedBox{112, 100, 5, 15, 0}, track, 0.05));   // 3 px of 15 overlap: 20 %
@@ -120,7 +122,7 @@ TEST(SplitMerge, MergedRegionIsReplacedByFeatureReconstructions) {
                                feature(3, {107, 106}, {1, 0}), feature(4, {101, 106}, {1, 0})});
   const std::vector<OrientedBox> regions = {enclosing_box(predicted)};
   const RegionAssociation a = associate_regions(regions, predicted, 0.05);
-  const SplitMergeResult r = resolve_split_merge(a, regions, tracks, predicted, features, TrackerOptions{});
+  const SplitMergeResult r = resolve_split_merge(a, regions, tracks, predicted, velocities_of(tracks.size()), {}, features, TrackerOptions{});
   ASSERT_EQ(r.measurements[0].kind, MeasurementKind::Centre);
   ASSERT_EQ(r.measurements[1].kind, MeasurementKind::Centre);
   EXPECT_NEAR(r.measurements[0].centre.x, 100.5, 1e-9);
@@ -138,7 +140,7 @@ TEST(SplitMerge, SplitKeepsTheRegionTheFeaturesFollowAndFreesTheOther) {
                                feature(3, {108, 100}, {3.5, 0})});
   const std::vector<OrientedBox> regions = {{92, 100, 5, 14, 0}, {108, 100, 5, 14, 0}};
   const RegionAssociation a = associate_regions(regions, predicted, 0.05);
-  const SplitMergeResult r = resolve_split_merge(a, regions, tracks, predicted, features, TrackerOptions{});
+  const SplitMergeResult r = resolve_split_merge(a, regions, tracks, predicted, velocities_of(tracks.size()), {}, features, TrackerOptions{});
   ASSERT_EQ(r.measurements[0].kind, MeasurementKind::Box);
   EXPECT_EQ(r.measurements[0].box, regions[0]);
   EXPECT_EQ(r.free_regions, (std::vector<int>{1}));
@@ -150,7 +152,7 @@ TEST(SplitMerge, FragmentsWithTheSameMotionAreOneMeasurement) {
   const FeatureIndex features({feature(1, {96, 100}, {2, 0}), feature(2, {104, 100}, {2.05, 0})});
   const std::vector<OrientedBox> regions = {{96.5, 100, 5, 7, 0}, {103.5, 100, 5, 7, 0}};
   const RegionAssociation a = associate_regions(regions, predicted, 0.05);
-  const SplitMergeResult r = resolve_split_merge(a, regions, tracks, predicted, features, TrackerOptions{});
+  const SplitMergeResult r = resolve_split_merge(a, regions, tracks, predicted, velocities_of(tracks.size()), {}, features, TrackerOptions{});
   ASSERT_EQ(r.measurements[0].kind, MeasurementKind::Box);
   EXPECT_NEAR(r.measurements[0].box.cx, 100.0, 1e-3);
   EXPECT_NEAR(r.measurements[0].box.length, 14.0, 1e-3);
@@ -163,6 +165,32 @@ TEST(SplitMerge, FragmentsWithTheSameMotionAreOneMeasurement) {
 namespace uavmot::tracking {
 namespace {
 
+TEST(SplitMerge, OneObjectTrackedInPiecesIsAbsorbedIntoTheSeniorTrack) {
+  std::vector<TrackRecord> tracks(2);
+  tracks[0].id = 1;
+  tracks[0].hits = 4;
+  tracks[1].id = 2;
+  tracks[1].hits = 4;
+  tracks[0].state = tracks[1].state = TrackState::Confirmed;
+  const std::vector<OrientedBox> predicted = {{96, 100, 5, 7, 0}, {104, 100, 5, 7, 0}};  // two halves
+  const std::vector<OrientedBox> regions = {{100, 100, 5, 15, 0}};                      // the whole car
+  const FeatureIndex none({});
+  const RegionAssociation a = associate_regions(regions, predicted, 0.05);
+  const SplitMergeResult r = resolve_split_merge(a, regions, tracks, predicted, velocities_of(2), {8.0, 20.0}, none, TrackerOptions{});
+  ASSERT_EQ(r.measurements[0].kind, MeasurementKind::Box);
+  EXPECT_TRUE(r.absorbed[1]);
+  EXPECT_FALSE(r.absorbed[0]);
+  // The same region shared by two cars moving differently is a merge, nobody is absorbed.
+  std::vector<cv::Vec2d> different = {cv::Vec2d(2, 0), cv::Vec2d(0.5, 0)};
+  const SplitMergeResult m = resolve_split_merge(a, regions, tracks, predicted, different, {8.0, 20.0}, none, TrackerOptions{});
+  EXPECT_FALSE(m.absorbed[0] || m.absorbed[1]);
+  // A region larger than one object (two cars side by side) is a merge too.
+  const std::vector<OrientedBox> wide = {{100, 100, 11, 15, 0}};
+  const RegionAssociation aw = associate_regions(wide, predicted, 0.05);
+  const SplitMergeResult w = resolve_split_merge(aw, wide, tracks, predicted, velocities_of(2), {8.0, 20.0}, none, TrackerOptions{});
+  EXPECT_FALSE(w.absorbed[0] || w.absorbed[1]);
+}
+
 TEST(SplitMerge, TentativeTrackDoesNotTurnARegionIntoAMerge) {
   std::vector<TrackRecord> tracks(2);
   tracks[0].state = TrackState::Confirmed;
@@ -172,7 +200,7 @@ TEST(SplitMerge, TentativeTrackDoesNotTurnARegionIntoAMerge) {
   const FeatureIndex none({});
   const RegionAssociation a = associate_regions(regions, predicted, 0.05);
   ASSERT_EQ(a.tracks_of_region[0].size(), 2u);
-  const SplitMergeResult r = resolve_split_merge(a, regions, tracks, predicted, none, TrackerOptions{});
+  const SplitMergeResult r = resolve_split_merge(a, regions, tracks, predicted, velocities_of(tracks.size()), {}, none, TrackerOptions{});
   ASSERT_EQ(r.measurements[0].kind, MeasurementKind::Box);
   EXPECT_EQ(r.measurements[0].box, regions[0]);
   EXPECT_EQ(r.measurements[1].kind, MeasurementKind::None);

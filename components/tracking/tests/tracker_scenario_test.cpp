@@ -163,6 +163,33 @@ TEST(TrackerScenario, RegionSplitIntoTwoPiecesOfOneObjectStaysOneTrack) {
   EXPECT_LT(s.mean_position_error, 0.6);
 }
 
+TEST(TrackerScenario, ObjectFragmentedFromItsFirstFrameEndsAsOneTrack) {
+  // Segmentation reports the car as two halves for its first 12 frames (two tracks start), then whole.
+  SyntheticScene scene({car(1, {100, 200}, {1.5, 0.0})}, drifting_camera());
+  scene.edit_regions = [](int frame, std::vector<Region>& regions, const std::vector<TruthBox>&) {
+    if (frame > 12 || regions.size() != 1) return;
+    const OrientedBox whole = regions[0].box;
+    Region front = regions[0];
+    Region rear = regions[0];
+    front.box.length = rear.box.length = 0.45 * whole.length;
+    const cv::Point2d f = from_box_coordinates(whole, {0.27, 0.0});
+    const cv::Point2d r = from_box_coordinates(whole, {-0.27, 0.0});
+    front.box.cx = f.x;
+    front.box.cy = f.y;
+    rear.box.cx = r.x;
+    rear.box.cy = r.y;
+    regions = {front, rear};
+  };
+  Tracker tracker;
+  RunOptions run = run_for(80);
+  run.score_from_frame = 25;
+  const Score s = run_and_score(scene, tracker, run);
+  EXPECT_EQ(s.all_confirmed_ids.size(), 1u);
+  EXPECT_EQ(s.matched, s.truth_instances);
+  EXPECT_EQ(s.unmatched_confirmed_tracks, 0);
+  EXPECT_LT(s.mean_length_error, 1.0);
+}
+
 TEST(TrackerScenario, ConvoyOfFourIsFourTracks) {
   std::vector<ObjectPath> convoy;
   for (int i = 0; i < 4; ++i) convoy.push_back(car(static_cast<uint64_t>(i + 1), {150.0 - 22.0 * i, 250}, {1.4, -0.5}));

@@ -7,6 +7,9 @@
 //    fragments of it and are merged into one box; otherwise the track keeps the region its features
 //    follow and the others are free to start new tracks.
 // A tentative track's claim on a region that an established track also validates is dropped first.
+// A shared region no larger than one object (`max_object_size_px`: width across, height along) whose
+// tracks move alike is one object tracked in pieces: the senior track (most hits) keeps it and the
+// others are absorbed (deleted). Zero size disables this.
 
 #include <vector>
 
@@ -22,12 +25,13 @@ struct TrackMeasurement {
   OrientedBox box;       // kind == Box
   cv::Point2d centre;    // kind == Centre
   bool merged = false;   // in a merge this frame: its features must not be relearnt from this box
-  bool split = false;    // the track gave up other regions: its size may change abruptly
+  bool size_jump = false;  // split off other regions or absorbed pieces: its size may change abruptly
 };
 
 struct SplitMergeResult {
   std::vector<TrackMeasurement> measurements;  // one per track
   std::vector<int> free_regions;               // ascending: may start new tracks
+  std::vector<bool> absorbed;                  // per track: a piece of a senior track's object, to delete
 };
 
 // Median velocity of the moving features inside `box`; false when it holds none.
@@ -38,6 +42,7 @@ OrientedBox enclosing_box(const std::vector<OrientedBox>& boxes);
 
 SplitMergeResult resolve_split_merge(const RegionAssociation& gating, const std::vector<OrientedBox>& regions,
                                      const std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
+                                     const std::vector<cv::Vec2d>& velocities, const cv::Size2d& max_object_size_px,
                                      const FeatureIndex& features, const TrackerOptions& options);
 
 }  // namespace uavmot::tracking

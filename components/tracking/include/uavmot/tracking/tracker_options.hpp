@@ -50,6 +50,9 @@ struct TrackerOptions {
   // Regions inside one track's gate are fragments of one object when their motion agrees within the
   // feature motion tolerances and their union fits in the predicted box enlarged by this factor.
   double fragment_union_factor = 1.4;
+  // A region shared by several tracks but no larger than SceneInfo's vehicle size times this factor
+  // holds one object tracked in pieces: the senior track keeps it, the others are absorbed. 0 disables.
+  double single_object_size_factor = 1.5;
 
   // --- Initiation (initiator) ---------------------------------------------------------------
   // A free region is not started as a new track while this fraction of it lies inside a live track.
