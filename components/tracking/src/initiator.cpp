@@ -15,14 +15,25 @@ bool similar_size(const OrientedBox& a, const OrientedBox& b, double ratio) {
   return within(a.length, b.length) && within(a.width, b.width);
 }
 
+// The track's last velocity and the region's motion must not point apart (a vehicle that left the view
+// is not re-acquired by another one driving in where it left).
+bool compatible_direction(const TrackRecord& track, const cv::Vec2d* region_velocity, double min_speed) {
+  if (region_velocity == nullptr) return true;
+  const cv::Vec2d last(track.mean[kVx], track.mean[kVy]);
+  if (cv::norm(last) < min_speed || cv::norm(*region_velocity) < min_speed) return true;
+  return last.dot(*region_velocity) > 0.0;
+}
+
 // The dormant track closest to `region` within the re-acquisition radius, or -1.
-int find_dormant(const OrientedBox& region, const std::vector<TrackRecord>& dormant, double radius_px, double ratio) {
+int find_dormant(const OrientedBox& region, const cv::Vec2d* region_velocity, const std::vector<TrackRecord>& dormant,
+                 double radius_px, double ratio, double min_speed) {
   int best = -1;
   double best_distance = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < dormant.size(); ++i) {
     const OrientedBox& anchor = dormant[i].anchor_box;
     const double d = cv::norm(cv::Point2d(region.cx - anchor.cx, region.cy - anchor.cy));
-    if (d <= radius_px && d < best_distance && similar_size(region, anchor, ratio)) {
+    if (d <= radius_px && d < best_distance && similar_size(region, anchor, ratio) &&
+        compatible_direction(dormant[i], region_velocity, min_speed)) {
       best = static_cast<int>(i);
       best_distance = d;
     }
@@ -53,7 +64,8 @@ void initiate_tracks(const std::vector<int>& free_regions, const std::vector<Ori
     const bool has_motion = region_motion(region, features, velocity);
     const KalmanState kalman = initial_state(
         region, velocity, has_motion ? options.init_velocity_sigma_features : options.init_velocity_sigma, noise);
-    const int dormant = find_dormant(region, state.dormant, radius_px, options.reacquire_size_ratio);
+    const int dormant = find_dormant(region, has_motion ? &velocity : nullptr, state.dormant, radius_px,
+                                     options.reacquire_size_ratio, options.feature_min_speed_for_direction);
     TrackRecord track;
     if (dormant >= 0) {
       // Re-acquired: same id and history, fresh filter state, features relearnt.

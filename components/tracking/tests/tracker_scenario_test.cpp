@@ -331,3 +331,35 @@ TEST(TrackerScenario, AngleWrapAroundKeepsAStableBox) {
 
 }  // namespace
 }  // namespace uavmot::tracking::testing
+
+namespace uavmot::tracking::testing {
+namespace {
+
+TEST(TrackerScenario, OncomingVehicleDoesNotInheritAStoppedVehiclesId) {
+  // Car 1 drives right and stops (no region); car 2, parked right beside that spot, drives off to the
+  // left while car 1 stands: it must get a new id, and car 1 its old one when it drives on.
+  ObjectPath stopper;
+  stopper.truth_id = 1;
+  stopper.ground_centre = [](int frame) {
+    if (frame <= 40) return cv::Point2d(100 + 1.5 * (frame - 1), 200);
+    if (frame <= 140) return cv::Point2d(100 + 1.5 * 39, 200);
+    return cv::Point2d(100 + 1.5 * 39 + 1.5 * (frame - 140), 200);
+  };
+  stopper.heading_deg = [](int) { return 0.0; };
+  ObjectPath oncoming;
+  oncoming.truth_id = 2;
+  oncoming.ground_centre = [](int frame) {
+    return frame <= 80 ? cv::Point2d(164, 201) : cv::Point2d(164 - 1.5 * (frame - 80), 201);
+  };
+  oncoming.heading_deg = [](int) { return 0.0; };
+  SyntheticScene scene({stopper, oncoming}, static_camera());
+  Tracker tracker;
+  const Score s = run_and_score(scene, tracker, run_for(180));
+  ASSERT_TRUE(s.track_ids_of_truth.count(1) && s.track_ids_of_truth.count(2));
+  EXPECT_EQ(s.track_ids_of_truth.at(1).size(), 1u);
+  EXPECT_EQ(s.track_ids_of_truth.at(2).size(), 1u);
+  EXPECT_NE(s.track_ids_of_truth.at(1).front(), s.track_ids_of_truth.at(2).front());
+}
+
+}  // namespace
+}  // namespace uavmot::tracking::testing
