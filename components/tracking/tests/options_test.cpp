@@ -51,3 +51,19 @@ TEST(TrackerOptions, TrackerRejectsInvalidOptions) {
 
 }  // namespace
 }  // namespace uavmot::tracking
+
+namespace uavmot::tracking {
+namespace {
+
+TEST(TrackOutput, SpeedInMetresAndKilometresPerHour) {
+  Track t;
+  t.velocity = cv::Vec2d(3.0, 4.0);  // 5 px/frame
+  SceneInfo scene;
+  scene.gsd_m = 0.2;
+  scene.fps = 25.0;
+  EXPECT_DOUBLE_EQ(speed_mps(t, scene), 25.0);  // 5 px x 0.2 m x 25 /s
+  EXPECT_DOUBLE_EQ(speed_kmh(t, scene), 90.0);
+}
+
+}  // namespace
+}  // namespace uavmot::tracking
