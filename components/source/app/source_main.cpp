@@ -13,6 +13,7 @@
 #include "uavmot/dds/frame_convert.hpp"
 #include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/dds/node_options.hpp"
+#include "uavmot/dds/node_support.hpp"
 #include "uavmot/source/frame_source.hpp"
 
 namespace uavmot {
@@ -70,12 +71,16 @@ int source_main(int argc, char** argv) {
 
       Frame frame;
       int64_t published = 0;
+      // Capture times go on the wire on the wall clock (stream start + (index - 1) / rate), so every
+      // component can tell its latency; the results never depend on them.
+      const int64_t stream_start_ns = dds::wall_clock_ns();
       int exit_code = kExitOk;
       const auto start = std::chrono::steady_clock::now();
       try {
         while (!shutdown_requested() && frames->next(frame)) {
           if (paced) std::this_thread::sleep_until(start + period * (frame.index - 1));
           const auto t0 = std::chrono::steady_clock::now();
+          frame.capture_time_ns += stream_start_ns;
           auto sample = dds::to_msg(frame);
           const bool ok = lossless ? writer->write_reliably(sample) : writer->write(sample);
           if (!ok) {
