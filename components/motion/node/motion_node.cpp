@@ -39,6 +39,7 @@ int motion_main(int argc, char** argv) {
       dds::Participant participant(node.dds);
       auto frames = participant.make_reader<msg::FramePubSubType>(dds::kFramesTopic, dds::TopicClass::Frames);
       auto motion_out = participant.make_writer<msg::MotionEstimatePubSubType>(dds::kMotionTopic, dds::TopicClass::Chain);
+      if (node.dds.mode == dds::DeliveryMode::Lossless) motion_out->set_required_readers(node.wait_subscribers);
       dds::HealthReporter health(participant, "motion", "*");
       std::map<std::string, motion::MotionEstimator> estimators;
       std::map<std::string, int64_t> last_index;

@@ -39,7 +39,7 @@ int segmentation_main(int argc, char** argv) {
       using Node = dds::PairedNode<msg::FramePubSubType, msg::MotionEstimatePubSubType, msg::SegmentationPubSubType, Frame, MotionEstimate>;
       Node paired(participant,
                   {"segmentation", dds::kFramesTopic, dds::kMotionTopic, dds::kSegmentationTopic, dds::TopicClass::Frames,
-                   dds::TopicClass::Chain, streams},
+                   dds::TopicClass::Chain, streams, node.wait_subscribers},
                   [&](const std::string& stream, const Frame& frame, const MotionEstimate& motion) {
                     auto& segmenter = segmenters.try_emplace(stream, options.segmentation, options.scene).first->second;
                     return dds::to_msg(segmenter.process(frame, motion));

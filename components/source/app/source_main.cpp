@@ -25,7 +25,6 @@ int source_main(int argc, char** argv) {
   std::string color = "gray";
   double rate_hz = 0.0;
   bool native_rate = false;
-  int wait_subscribers = 1;
   double wait_timeout_s = 30.0;
 
   return run_app(argc, argv, "source", "publish frames of a video, image folder or MOTChallenge sequence", [&](CLI::App& app) {
@@ -38,9 +37,8 @@ int source_main(int argc, char** argv) {
     app.add_flag("--skip-corrupt", input.skip_corrupt, "skip undecodable images with a warning instead of failing");
     auto* rate = app.add_option("--rate", rate_hz, "publish at this rate (Hz); frames are timestamped at it")->check(CLI::PositiveNumber);
     app.add_flag("--native", native_rate, "publish at the input's own frame rate (default in live mode)")->excludes(rate);
-    app.add_option("--wait-subscribers", wait_subscribers, "frame subscribers to wait for before publishing")
-        ->check(CLI::NonNegativeNumber)->capture_default_str();
     app.add_option("--wait-timeout", wait_timeout_s, "seconds to wait for subscribers")->capture_default_str();
+    node.wait_subscribers = 1;
     dds::add_node_options(app, node);
 
     return [&]() -> int {
@@ -60,6 +58,8 @@ int source_main(int argc, char** argv) {
       const bool paced = rate_hz > 0.0 || native_rate || !lossless;
       const auto period = std::chrono::nanoseconds(static_cast<int64_t>(1e9 / info.fps));
 
+      const int wait_subscribers = node.wait_subscribers;
+      if (lossless) writer->set_required_readers(wait_subscribers);
       if (wait_subscribers > 0) {
         spdlog::info("waiting for {} subscriber(s) on {}", wait_subscribers, dds::kFramesTopic);
         if (!writer->wait_for_matched(wait_subscribers, std::chrono::milliseconds(static_cast<int64_t>(wait_timeout_s * 1000)))) {

@@ -37,7 +37,7 @@ int tracking_main(int argc, char** argv) {
                                    MotionEstimate, SegmentationResult>;
       Node paired(participant,
                   {"tracking", dds::kMotionTopic, dds::kSegmentationTopic, dds::kTracksTopic, dds::TopicClass::Chain,
-                   dds::TopicClass::Chain, streams},
+                   dds::TopicClass::Chain, streams, node.wait_subscribers},
                   [&](const std::string& stream, const MotionEstimate& motion, const SegmentationResult& segmentation) {
                     auto& tracker = trackers.try_emplace(stream, options.tracking, options.scene).first->second;
                     return dds::to_msg(tracker.process(motion, segmentation));

@@ -28,6 +28,7 @@ class PairedNode {
     std::string input_a, input_b, output;
     TopicClass class_a, class_b;
     int streams = 1;
+    int required_readers = 0;  // lossless: readers of the output to wait for
   };
 
   PairedNode(Participant& participant, Spec spec, Process process)
@@ -38,7 +39,9 @@ class PairedNode {
         writer_(participant.make_writer<PubOut>(spec_.output, TopicClass::Chain)),
         health_(participant, spec_.component, "*"),
         ends_(spec_.streams),
-        process_(std::move(process)) {}
+        process_(std::move(process)) {
+    if (mode_ == DeliveryMode::Lossless) writer_->set_required_readers(spec_.required_readers);
+  }
 
   int run() {
     while (!shutdown_requested() && !ends_.all_ended()) {
