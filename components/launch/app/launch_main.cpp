@@ -70,7 +70,6 @@ int launch_main(int argc, char** argv) {
         }
         return kExitOk;
       }
-      if (!fs::exists(out_dir)) fs::create_directories(out_dir);
       return supervisor.run();
     };
   });

@@ -3,6 +3,8 @@
 
 #include <map>
 
+#include <spdlog/spdlog.h>
+
 #include "framePubSubTypes.h"
 #include "motionPubSubTypes.h"
 #include "uavmot/core/app.hpp"
@@ -41,6 +43,8 @@ int motion_main(int argc, char** argv) {
       auto motion_out = participant.make_writer<msg::MotionEstimatePubSubType>(dds::kMotionTopic, dds::TopicClass::Chain);
       if (node.dds.mode == dds::DeliveryMode::Lossless) motion_out->set_required_readers(node.wait_subscribers);
       dds::HealthReporter health(participant, "motion", "*");
+      spdlog::info("{} -> {} ({}, waiting for {} reader(s))", dds::kFramesTopic, dds::kMotionTopic, node.mode,
+                   node.wait_subscribers);
       std::map<std::string, motion::MotionEstimator> estimators;
       std::map<std::string, int64_t> last_index;
       dds::StreamEnds ends(streams);

@@ -44,6 +44,8 @@ class PairedNode {
   }
 
   int run() {
+    spdlog::info("{} + {} -> {} ({}, waiting for {} reader(s))", spec_.input_a, spec_.input_b, spec_.output,
+                 to_string(mode_), spec_.required_readers);
     while (!shutdown_requested() && !ends_.all_ended()) {
       health_.set_queue_depth(static_cast<uint32_t>(reader_a_->unread() + reader_b_->unread()));
       health_.tick();
