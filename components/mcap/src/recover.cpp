@@ -28,7 +28,15 @@ RecoverResult recover(const std::string& damaged_path, const std::string& out_pa
   // Never write over the input while reading it, even when the input is out_path.tmp.
   writer.open(out_path, out_path + ".recovering");
   for (const auto& [id, schema] : reader.schemas()) writer.add_schema_with_id(schema);
-  for (const auto& [id, channel] : reader.channels()) writer.add_channel_with_id(channel);
+  for (const auto& [id, channel] : reader.channels()) {
+    Channel copy = channel;
+    if (copy.schema_id != 0 && !reader.schemas().count(copy.schema_id)) {
+      copy.schema_id = 0;  // its Schema record was lost; keep the messages, untyped
+      result.damage.push_back({0, reader.path() + ": channel " + copy.topic + " lost its schema " +
+                                      std::to_string(channel.schema_id) + "; recovered without it"});
+    }
+    writer.add_channel_with_id(copy);
+  }
   for (const auto& metadata : reader.metadata()) writer.add_metadata(metadata);
   result.schemas = static_cast<uint32_t>(reader.schemas().size());
   result.channels = static_cast<uint32_t>(reader.channels().size());

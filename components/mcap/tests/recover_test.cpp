@@ -142,6 +142,42 @@ TEST(Recover, CorruptChunkInTheMiddleLosesOnlyThatChunk) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Recover, LostSchemaKeepsItsChannelsMessagesUntyped) {
+  const auto dir = test::temp_dir("recover_schema");
+  const std::string path = (dir / "rec.mcap").string();
+  std::vector<Written> written;
+  {
+    Writer writer(test::options(Compression::Zstd, 4 * 1024));
+    writer.open(path);
+    written = test::write_recording(writer, test::spec(90, 300, true));
+    writer.close();
+  }
+  Reader intact;
+  intact.open(path);
+  const uint64_t data_end = intact.chunks().back().offset + intact.chunks().back().length;
+  // Crash shape (no summary), and the first Schema record (right after the 31-byte start)
+  // with a broken name length.
+  std::vector<uint8_t> bytes = test::read_file(path);
+  bytes.resize(data_end);
+  ASSERT_EQ(bytes[31], 0x03);  // Schema opcode
+  for (int k = 0; k < 4; ++k) bytes[31 + 9 + 2 + k] = 0xff;
+  test::write_file(dir / "broken.mcap.tmp", bytes);
+
+  const RecoverResult result = recover((dir / "broken.mcap.tmp").string(), path);
+  EXPECT_EQ(result.messages, written.size());
+  EXPECT_EQ(result.schemas, 1u);
+  const bool reported = std::any_of(result.damage.begin(), result.damage.end(), [](const Damage& d) {
+    return d.description.find("lost its schema 1") != std::string::npos;
+  });
+  EXPECT_TRUE(reported);
+  Reader reader;
+  reader.open(path);
+  EXPECT_EQ(reader.channels().at(1).schema_id, 0);  // test/a used the lost schema
+  EXPECT_EQ(reader.channels().at(2).schema_id, 2);
+  EXPECT_TRUE(test::equal_messages(test::read_all(reader, {}), written));
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Recover, IntactFileIsCopiedWhole) {
   const auto dir = test::temp_dir("recover_intact");
   const std::string path = (dir / "rec.mcap").string();
