@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # ctest mcap_official_reader: writes the sample recordings, then checks them with the official
 # MCAP reader from npm. Installs the pinned node packages on first use.
-#   run.sh MAKE_SAMPLE_BINARY OUT_DIR IDL_DIR
+#   run.sh MAKE_SAMPLE_BINARY MCAP_INFO_BINARY OUT_DIR IDL_DIR
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 make_sample=$1
-out=$2
-idl=$3
+mcap_info=$2
+out=$3
+idl=$4
 if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
   echo "mcap_official_reader: node and npm are required (bash tools/install_deps.sh)" >&2
   exit 1
@@ -16,4 +17,4 @@ if [[ ! -d "$here/node_modules/@mcap/core" ]]; then
 fi
 rm -rf "$out"
 "$make_sample" "$out" "$idl"
-node "$here/validate.mjs" "$out"
+node "$here/validate.mjs" "$out" "$mcap_info"

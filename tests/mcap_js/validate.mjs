@@ -2,7 +2,9 @@
 // streaming) and decodes every CDR payload with Foxglove's OMG IDL deserializer, comparing the
 // values with what the C++ side serialized (expected.json from mcap_make_sample).
 //
-//   node validate.mjs SAMPLE_DIR
+// Then checks the other direction (interop.mjs): the official writer's files read by uavmot.
+//
+//   node validate.mjs SAMPLE_DIR MCAP_INFO_BINARY
 
 import { readFile, open } from "node:fs/promises";
 import path from "node:path";
@@ -12,9 +14,12 @@ import { loadDecompressHandlers } from "@mcap/support";
 import { parseIDL } from "@foxglove/omgidl-parser";
 import { MessageReader } from "@foxglove/omgidl-serialization";
 
+import { checkInterop } from "./interop.mjs";
+
 const dir = process.argv[2];
-if (!dir) {
-  console.error("usage: node validate.mjs SAMPLE_DIR");
+const mcapInfo = process.argv[3];
+if (!dir || !mcapInfo) {
+  console.error("usage: node validate.mjs SAMPLE_DIR MCAP_INFO_BINARY");
   process.exit(2);
 }
 
@@ -159,6 +164,12 @@ for (const [name, info] of Object.entries(manifest.files)) {
   } finally {
     await handle.close();
   }
+}
+
+try {
+  await checkInterop(dir, mcapInfo, check);
+} catch (error) {
+  check(false, `interop: ${error.stack ?? error}`);
 }
 
 console.log(`${passed} passed, ${failed} failed`);

@@ -1,6 +1,6 @@
 // Recording throughput: 1080p mono8 frames (2 MB) written as fast as possible with each chunk
 // compression, then read back. Frames are mosaics of real CLIF 2007 pixels at their native
-// resolution (three 640x1004 crops side by side plus 76 rows of a fourth frame), so the
+// resolution (three 640x1004 crops side by side over three 640x76 strips of three more), so the
 // compression ratio is that of real aerial imagery, not of resampled or synthetic images.
 //
 //   mcap_write_bench [--frames N] [--data DIR] [--out DIR] [--chunk-size BYTES] [--zstd-level L]
@@ -45,9 +45,9 @@ std::vector<std::vector<uint8_t>> load_mosaics(const std::string& dir, int count
     if (e.path().extension() == ".jpg") files.push_back(e.path());
   }
   std::sort(files.begin(), files.end());
-  if (files.size() < 4) throw std::runtime_error(dir + ": needs at least 4 .jpg frames");
+  if (files.size() < 6) throw std::runtime_error(dir + ": needs at least 6 .jpg frames");
   std::vector<cv::Mat> gray;
-  for (size_t i = 0; i < files.size() && static_cast<int>(i) < count + 3; ++i) {
+  for (size_t i = 0; i < files.size() && static_cast<int>(i) < count + 6; ++i) {
     cv::Mat m = cv::imread(files[i].string(), cv::IMREAD_GRAYSCALE);
     if (m.empty() || m.cols < 640 || m.rows < 1004) throw std::runtime_error(files[i].string() + ": unexpected frame");
     gray.push_back(m);
@@ -57,9 +57,8 @@ std::vector<std::vector<uint8_t>> load_mosaics(const std::string& dir, int count
     cv::Mat mosaic(1080, 1920, CV_8UC1);
     const auto at = [&](int j) -> const cv::Mat& { return gray[(k + j) % gray.size()]; };
     for (int j = 0; j < 3; ++j) at(j)(cv::Rect(0, 0, 640, 1004)).copyTo(mosaic(cv::Rect(640 * j, 0, 640, 1004)));
-    at(3)(cv::Rect(0, 0, 1920 > at(3).cols ? at(3).cols : 1920, 76)).copyTo(mosaic(cv::Rect(0, 1004, at(3).cols, 76)));
-    if (at(3).cols < 1920) {
-      at(0)(cv::Rect(0, 100, 1920 - at(3).cols, 76)).copyTo(mosaic(cv::Rect(at(3).cols, 1004, 1920 - at(3).cols, 76)));
+    for (int j = 0; j < 3; ++j) {
+      at(3 + j)(cv::Rect(0, 500, 640, 76)).copyTo(mosaic(cv::Rect(640 * j, 1004, 640, 76)));
     }
     std::vector<uint8_t> payload(100, 0);  // stands for the CDR header and Frame fields
     payload[1] = 1;
