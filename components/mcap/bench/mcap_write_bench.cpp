@@ -4,6 +4,7 @@
 // compression ratio is that of real aerial imagery, not of resampled or synthetic images.
 //
 //   mcap_write_bench [--frames N] [--data DIR] [--out DIR] [--chunk-size BYTES] [--zstd-level L]
+//                    [--zstd-threads T]
 //
 // Prints one table row per compression: MB/s, CPU ms per frame, ratio, read-back MB/s.
 // 60 Hz recording of 2 MB frames needs >= 120 MB/s sustained.
@@ -76,6 +77,7 @@ int main(int argc, char** argv) {
   std::string out = "/tmp/uavmot_mcap_bench";
   uint64_t chunk_size = 4ull << 20;
   int zstd_level = 0;
+  int zstd_threads = 0;
   for (int i = 1; i + 1 < argc; i += 2) {
     const std::string key = argv[i];
     const std::string value = argv[i + 1];
@@ -84,6 +86,7 @@ int main(int argc, char** argv) {
     else if (key == "--out") out = value;
     else if (key == "--chunk-size") chunk_size = std::stoull(value);
     else if (key == "--zstd-level") zstd_level = std::stoi(value);
+    else if (key == "--zstd-threads") zstd_threads = std::stoi(value);
     else {
       std::fprintf(stderr, "unknown option %s\n", key.c_str());
       return 2;
@@ -103,6 +106,7 @@ int main(int argc, char** argv) {
       options.compression = c;
       options.chunk_size = chunk_size;
       options.compression_level = c == Compression::Zstd ? zstd_level : 0;
+      options.compression_threads = c == Compression::Zstd ? zstd_threads : 0;
       Writer writer(options);
       writer.open(path);
       const uint16_t channel = writer.add_channel(0, "uavmot/frames", "cdr");

@@ -22,17 +22,25 @@ struct Codec::Contexts {
 Codec::Codec() : contexts_(std::make_unique<Contexts>()) {}
 Codec::~Codec() = default;
 
-void Codec::compress(Compression compression, int level, const uint8_t* data, size_t size,
+void Codec::compress(Compression compression, int level, int threads, const uint8_t* data, size_t size,
                      std::vector<uint8_t>& out) {
   switch (compression) {
     case Compression::None:
       out.assign(data, data + size);
       return;
     case Compression::Zstd: {
-      if (!contexts_->zstd_c) contexts_->zstd_c = ZSTD_createCCtx();
+      if (!contexts_->zstd_c) {
+        contexts_->zstd_c = ZSTD_createCCtx();
+        // Level 1 keeps up with 60 Hz 1080p frames on one core; see docs/benchmarks/mcap.md.
+        ZSTD_CCtx_setParameter(contexts_->zstd_c, ZSTD_c_compressionLevel, level == 0 ? 1 : level);
+        ZSTD_CCtx_setParameter(contexts_->zstd_c, ZSTD_c_contentSizeFlag, 1);
+        if (threads > 0) {
+          const size_t r = ZSTD_CCtx_setParameter(contexts_->zstd_c, ZSTD_c_nbWorkers, threads);
+          if (ZSTD_isError(r)) throw std::runtime_error(std::string("zstd: no worker threads: ") + ZSTD_getErrorName(r));
+        }
+      }
       out.resize(ZSTD_compressBound(size));
-      // Level 1 keeps up with 60 Hz 1080p frames on one core; see docs/benchmarks/mcap.md.
-      const size_t n = ZSTD_compressCCtx(contexts_->zstd_c, out.data(), out.size(), data, size, level == 0 ? 1 : level);
+      const size_t n = ZSTD_compress2(contexts_->zstd_c, out.data(), out.size(), data, size);
       if (ZSTD_isError(n)) throw std::runtime_error(std::string("zstd compression failed: ") + ZSTD_getErrorName(n));
       out.resize(n);
       return;

@@ -20,7 +20,9 @@ class Codec {
   Codec& operator=(const Codec&) = delete;
 
   // Replaces `out` with the compressed bytes. `level` 0 picks a fast default per codec.
-  void compress(Compression compression, int level, const uint8_t* data, size_t size, std::vector<uint8_t>& out);
+  // `threads` > 0 lets zstd compress one chunk on that many worker threads.
+  void compress(Compression compression, int level, int threads, const uint8_t* data, size_t size,
+                std::vector<uint8_t>& out);
 
   // Decompresses exactly `out_size` bytes named by the spec string ("", "lz4", "zstd") into
   // `out`. Throws std::runtime_error with the reason on any mismatch or unknown compression.

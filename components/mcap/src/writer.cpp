@@ -72,7 +72,8 @@ struct Writer::State {
     const std::vector<uint8_t>* records = &chunk;
     if (options.compression != Compression::None) {
       try {
-        codec.compress(options.compression, options.compression_level, chunk.data(), chunk.size(), compressed);
+        codec.compress(options.compression, options.compression_level, options.compression_threads, chunk.data(),
+                       chunk.size(), compressed);
       } catch (const std::runtime_error& e) {
         throw InputError(fmt::format("{}: {}", temporary_path, e.what()));
       }
@@ -121,6 +122,7 @@ struct Writer::State {
 
 Writer::Writer(WriterOptions options) : state_(std::make_unique<State>()) {
   if (options.chunk_size == 0) throw InvalidArgument("mcap::WriterOptions::chunk_size must be > 0");
+  if (options.compression_threads < 0) throw InvalidArgument("mcap::WriterOptions::compression_threads must be >= 0");
   state_->options = std::move(options);
 }
 

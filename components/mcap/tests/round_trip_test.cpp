@@ -164,6 +164,26 @@ TEST(RoundTrip, LargeFramesSpanOneChunkEach) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(RoundTrip, ZstdWorkerThreadsWriteTheSameMessages) {
+  const auto dir = test::temp_dir("zstd_threads");
+  const std::string path = (dir / "rec.mcap").string();
+  WriterOptions options = test::options(Compression::Zstd, 256 * 1024);
+  options.compression_threads = 2;
+  std::vector<Written> written;
+  {
+    Writer writer(options);
+    writer.open(path);
+    written = test::write_recording(writer, test::spec(400, 20000));
+    writer.close();
+  }
+  Reader reader;
+  reader.open(path);
+  EXPECT_FALSE(reader.damage());
+  EXPECT_GT(reader.chunks().size(), 5u);
+  EXPECT_TRUE(test::equal_messages(test::read_all(reader, {}), test::in_log_time_order(written)));
+  std::filesystem::remove_all(dir);
+}
+
 TEST(RoundTrip, EmptyRecordingIsValid) {
   const auto dir = test::temp_dir("empty_rec");
   const std::string path = (dir / "rec.mcap").string();

@@ -26,6 +26,7 @@ namespace uavmot::mcap {
 struct WriterOptions {
   Compression compression = Compression::Zstd;
   int compression_level = 0;              // 0: the codec's fast default (zstd 1, lz4 fast)
+  int compression_threads = 0;            // zstd only: worker threads per chunk (0: the caller's thread)
   uint64_t chunk_size = 4ull * 1024 * 1024;  // a chunk is closed once its records reach this size
   std::string profile;                    // the Header profile; "" for uavmot's own
   std::string library = "uavmot";
