@@ -12,7 +12,8 @@ if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
   echo "mcap_official_reader: node and npm are required (bash tools/install_deps.sh)" >&2
   exit 1
 fi
-if [[ ! -d "$here/node_modules/@mcap/core" ]]; then
+# (Re)install when node_modules is missing or older than the lock file.
+if [[ ! -f "$here/node_modules/.package-lock.json" || "$here/package-lock.json" -nt "$here/node_modules/.package-lock.json" ]]; then
   (cd "$here" && npm ci --no-audit --no-fund --loglevel=error)
 fi
 rm -rf "$out"
