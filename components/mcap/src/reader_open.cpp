@@ -53,6 +53,8 @@ void Reader::State::open_source(std::unique_ptr<detail::ByteSource> src, const s
     metadata.clear();
     entries.clear();
     scan();
+    statistics.schema_count = static_cast<uint16_t>(schemas.size());
+    statistics.channel_count = static_cast<uint32_t>(channels.size());
   }
 }
 
@@ -116,6 +118,11 @@ bool Reader::State::read_summary() {
     return false;
   }
 
+  if (footer_at - footer.summary_start > options.max_record_bytes) {
+    notes.push_back(fmt::format("summary section at byte offset {} is implausibly large: read by a sequential scan",
+                                footer.summary_start));
+    return false;
+  }
   std::vector<uint8_t> summary;
   source->read(footer.summary_start, footer_at + kRecordPrefixSize + 16 - footer.summary_start, summary);
   if (footer.summary_crc != 0) {
@@ -315,7 +322,10 @@ void Reader::State::scan() {
       switch (static_cast<Opcode>(opcode)) {
         case Opcode::Schema: add_schema(detail::parse_schema(c), pos); break;
         case Opcode::Channel: add_channel(detail::parse_channel(c), pos); break;
-        case Opcode::Metadata: metadata.push_back(detail::parse_metadata(c)); break;
+        case Opcode::Metadata:
+          metadata.push_back(detail::parse_metadata(c));
+          ++statistics.metadata_count;
+          break;
         case Opcode::Message: {
           const detail::MessageHeader h = detail::parse_message_header(c);
           if (!channels.count(h.channel_id)) {

@@ -65,6 +65,11 @@ TEST_P(Recover, CrashedTemporaryFileBecomesValidWithEveryCompleteChunk) {
     damaged.open(crashed);
     ASSERT_TRUE(damaged.damage().has_value());
     EXPECT_NE(damaged.damage()->description.find("without a DataEnd"), std::string::npos);
+    EXPECT_FALSE(damaged.indexed());
+    EXPECT_EQ(damaged.statistics().message_count, c.flushed.size());
+    EXPECT_EQ(damaged.statistics().channel_count, 2u);
+    EXPECT_EQ(damaged.statistics().schema_count, 1u);
+    EXPECT_EQ(damaged.statistics().metadata_count, 1u);
   }
 
   const std::string out = (dir / "flight.mcap").string();
