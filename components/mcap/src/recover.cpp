@@ -1,6 +1,7 @@
 #include "uavmot/mcap/recover.hpp"
 
 #include <algorithm>
+#include <cstdio>
 
 #include "uavmot/mcap/reader.hpp"
 
@@ -26,6 +27,7 @@ RecoverResult recover(const std::string& damaged_path, const std::string& out_pa
 
   Writer writer(writer_options);
   // Never write over the input while reading it, even when the input is out_path.tmp.
+  std::remove((out_path + ".recovering").c_str());  // left by an interrupted recover(): ours to replace
   writer.open(out_path, out_path + ".recovering");
   for (const auto& [id, schema] : reader.schemas()) writer.add_schema_with_id(schema);
   for (const auto& [id, channel] : reader.channels()) {

@@ -145,8 +145,16 @@ void Writer::open(const std::string& path, const std::string& temporary_path) {
   state_->options = std::move(options);
   state_->path = path;
   state_->temporary_path = temporary_path;
-  state_->file = std::fopen(temporary_path.c_str(), "wb");
-  if (!state_->file) state_->fail("cannot create the file");
+  // Exclusive create: a leftover .tmp is a crashed recording that recover() can still save.
+  state_->file = std::fopen(temporary_path.c_str(), "wbx");
+  if (!state_->file) {
+    if (errno == EEXIST) {
+      throw InputError(fmt::format("{}: already exists: a previous recording did not finish; recover it (uavmot "
+                                   "record --recover) or remove it",
+                                   temporary_path));
+    }
+    state_->fail("cannot create the file");
+  }
   state_->chunk.reserve(state_->options.chunk_size + 64 * 1024);
 
   std::vector<uint8_t> start(detail::kMagic.begin(), detail::kMagic.end());

@@ -218,6 +218,21 @@ TEST(Writer, RejectsUnknownIdsAndDeduplicatesSchemas) {
   std::filesystem::remove_all(dir);
 }
 
+TEST(Writer, NeverOverwritesALeftoverTemporaryFile) {
+  const auto dir = test::temp_dir("leftover");
+  const std::string path = (dir / "rec.mcap").string();
+  test::write_file(path + ".tmp", {1, 2, 3});  // a crashed recording's file
+  Writer writer;
+  try {
+    writer.open(path);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("rec.mcap.tmp: already exists"), std::string::npos) << e.what();
+  }
+  EXPECT_EQ(test::read_file(path + ".tmp"), (std::vector<uint8_t>{1, 2, 3}));
+  std::filesystem::remove_all(dir);
+}
+
 TEST(Writer, UnwritablePathIsAClearError) {
   Writer writer;
   try {

@@ -40,7 +40,8 @@ class Writer {
   Writer(const Writer&) = delete;
   Writer& operator=(const Writer&) = delete;
 
-  // Creates `path + ".tmp"`; close() renames it to `path`. Throws InputError if it cannot.
+  // Creates `path + ".tmp"`; close() renames it to `path` (replacing any file there). Throws
+  // InputError if it cannot, or if the .tmp file exists (a crashed recording: never overwritten).
   void open(const std::string& path);
   // Same, with an explicit temporary name (recover() uses it when path.tmp is its input).
   void open(const std::string& path, const std::string& temporary_path);
