@@ -25,7 +25,7 @@
 namespace uavmot::mcap {
 
 struct QueuedWriterOptions {
-  uint64_t max_queue_bytes = 256ull << 20;  // payload bytes waiting; about 2 s of 60 Hz 1080p
+  uint64_t max_queue_bytes = 256ull << 20;  // payload bytes waiting (256 MiB: about 2 s of 60 Hz 1080p)
 };
 
 class QueuedWriter {
