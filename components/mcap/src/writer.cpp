@@ -98,7 +98,9 @@ struct Writer::State {
     // One MessageIndex per channel, right after the chunk.
     scratch.clear();
     const uint64_t indexes_start = position;
-    for (const auto& [channel_id, entries] : chunk_message_index) {
+    for (auto& [channel_id, entries] : chunk_message_index) {
+      // Sorted by log time (ties by offset), so readers can bisect a channel's index.
+      std::sort(entries.begin(), entries.end());
       index.message_index_offsets[channel_id] = indexes_start + scratch.size();
       detail::append_message_index(scratch, channel_id, entries);
     }
