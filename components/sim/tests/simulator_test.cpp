@@ -206,3 +206,42 @@ TEST(Simulator, ProceduralGroundNeedsNoImages) {
 
 }  // namespace
 }  // namespace uavmot::sim
+
+namespace uavmot::sim {
+namespace {
+
+TEST(Simulator, VehiclesNeverOverlapEvenAtJunctionsAndLaneChanges) {
+  Scenario s = testing::small_scenario("dense", 40);
+  s.camera.width = 640;
+  s.camera.height = 480;
+  const auto frames = run(s, 1);
+  int pairs_close = 0;
+  for (const SimFrame& f : frames) {
+    for (size_t i = 0; i < f.objects.size(); ++i)
+      for (size_t j = i + 1; j < f.objects.size(); ++j) {
+        const double inter = intersection_area(f.objects[i].box, f.objects[j].box);
+        EXPECT_LT(inter, 0.02 * box_area(f.objects[i].box))
+            << "frame " << f.index << " ids " << f.objects[i].id << " and " << f.objects[j].id;
+        if (std::hypot(f.objects[i].box.cx - f.objects[j].box.cx, f.objects[i].box.cy - f.objects[j].box.cy) < 15.0) ++pairs_close;
+      }
+  }
+  EXPECT_GT(pairs_close, 20) << "dense traffic should bring vehicles close together";
+}
+
+TEST(Simulator, DenseTrafficHasManyMoversAndParkedVehicles) {
+  Scenario s = testing::small_scenario("dense", 2);
+  s.camera.width = 640;
+  s.camera.height = 480;
+  const auto frames = run(s, 2);
+  int parked = 0, moving = 0;
+  for (const ObjectTruth& o : frames[1].objects) {
+    if (o.parked) ++parked;
+    if (o.moving) ++moving;
+    EXPECT_FALSE(o.parked && o.moving);
+  }
+  EXPECT_GT(moving, 10);
+  EXPECT_GT(parked, 0);
+}
+
+}  // namespace
+}  // namespace uavmot::sim

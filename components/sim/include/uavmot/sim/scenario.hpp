@@ -45,7 +45,7 @@ struct RoadParams {
   int side_lanes_per_direction = 1;
   double lane_width_m = 3.5;
   double asphalt_gray = 85.0;     // 0..255
-  double asphalt_opacity = 0.8;   // how much of the underlying texture is replaced
+  double asphalt_opacity = 0.9;   // how much of the underlying texture is replaced
   double marking_gray = 215.0;
   double marking_width_m = 0.15;
   double dash_length_m = 3.0;
