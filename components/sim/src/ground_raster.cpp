@@ -278,6 +278,8 @@ GroundRaster build_ground_raster(const Scenario& scenario, const RoadNetwork& ne
   cv::Mat raster;
   const cv::Matx23d mosaic_from_raster(raster_gsd / texture_gsd, 0, 0, 0, raster_gsd / texture_gsd, 0);
   cv::warpAffine(mosaic, raster, mosaic_from_raster, size, cv::INTER_CUBIC | cv::WARP_INVERSE_MAP, cv::BORDER_REFLECT);
+  // Upsampled imagery is smooth; real ground at this resolution has grain (gravel, grass, roof texture).
+  if (scenario.ground.detail_noise > 0.0) raster += smooth_noise(size, 1.2, scenario.ground.detail_noise, seed ^ 0xD37A11ULL);
   paint_roads(raster, ground, scenario, network, seed);
   raster.convertTo(ground.image, CV_8U);
   return ground;

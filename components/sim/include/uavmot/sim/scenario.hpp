@@ -33,6 +33,7 @@ struct GroundParams {
   std::string texture_dir;        // folder of images; "" = the shared CLIF 2007 frames; "procedural" = synthetic
   double texture_gsd_m = 1.0;     // metres per texture pixel
   double texture_contrast = 1.0;  // scales the texture's deviation from its mean
+  double detail_noise = 5.0;      // gray-level spread of fine ground grain added at rendering resolution
   int raster_max_megapixels = 120;  // refuse scenarios that need a larger ground raster
 };
 
