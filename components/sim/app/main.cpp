@@ -3,6 +3,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -37,6 +38,8 @@ int main(int argc, char** argv) {
   app.add_option("--preview", preview_file, "instead of a sequence, write one frame with its ground truth drawn (PNG)");
   app.add_option("--preview-frame", preview_frame, "frame for --preview (1-based)")->check(CLI::PositiveNumber);
   app.add_option("--preview-scale", preview_scale, "enlargement for --preview")->check(CLI::Range(0.1, 8.0));
+  std::vector<int> preview_crop;
+  app.add_option("--preview-crop", preview_crop, "part of the frame for --preview: X Y WIDTH HEIGHT")->expected(4);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -72,6 +75,7 @@ int main(int argc, char** argv) {
       }
       uavmot::sim::PreviewOptions options;
       options.scale = preview_scale;
+      if (preview_crop.size() == 4) options.crop = cv::Rect(preview_crop[0], preview_crop[1], preview_crop[2], preview_crop[3]);
       if (!cv::imwrite(preview_file, uavmot::sim::draw_ground_truth(frame, options)))
         throw uavmot::InputError("cannot write '" + preview_file + "'");
       return 0;

@@ -167,13 +167,16 @@ double Traffic::stop_line_gap(const Vehicle& v) const {
     } else {
       continue;
     }
-    if (!red_light(major)) continue;
+    // Stop for red, and also while a vehicle of the other road is still inside the junction.
+    const size_t c = static_cast<size_t>(&x - network_.crossings.data());
+    const bool other_inside = junction_occupied_[c][major ? 1 : 0];
+    if (!red_light(major) && !other_inside) continue;
     const double lane_s = v.direction > 0 ? s_cross : road.length() - s_cross;
     const double stop = lane_s - network_.roads[other].half_width() - 2.5;
     const double gap = stop - (v.s_m + v.length_m / 2.0);
     // A vehicle that can no longer stop comfortably drives through.
     const double braking = v.speed_mps * v.speed_mps / (2.0 * 4.0);
-    if (gap > -0.5 && gap + 0.5 >= braking) best = std::min(best, std::max(0.0, gap));
+    if (gap > -0.5 && (gap + 0.5 >= braking || other_inside)) best = std::min(best, std::max(0.0, gap));
   }
   return best;
 }
@@ -195,6 +198,21 @@ double Traffic::spawn_gap(const Vehicle& v, double& leader_speed) const {
     }
   }
   return best;
+}
+
+void Traffic::mark_occupied_junctions() {
+  junction_occupied_.assign(network_.crossings.size(), {false, false});
+  for (const Vehicle& u : vehicles_) {
+    if (u.parked) continue;
+    for (size_t c = 0; c < network_.crossings.size(); ++c) {
+      const Crossing& x = network_.crossings[c];
+      if (u.road != x.road_a && u.road != x.road_b) continue;
+      const bool on_a = u.road == x.road_a;
+      const double s_cross = on_a ? x.s_a : x.s_b;
+      const double other_half = network_.roads[on_a ? x.road_b : x.road_a].half_width();
+      if (std::abs(road_s(u) - s_cross) < other_half + u.length_m / 2.0 + 1.5) junction_occupied_[c][on_a ? 0 : 1] = true;
+    }
+  }
 }
 
 void Traffic::build_index() {
@@ -314,6 +332,7 @@ void Traffic::step(double dt) {
 
   // Accelerations from the state at the start of the step (simultaneous update).
   build_index();
+  mark_occupied_junctions();
   std::vector<double> accel(vehicles_.size(), 0.0);
   std::vector<int> start_change(vehicles_.size(), -1);
   for (size_t i = 0; i < vehicles_.size(); ++i) {

@@ -2,6 +2,7 @@
 // Microscopic traffic on the road network: car following (IDM), lane changes for overtaking,
 // convoys, side-by-side pairs, a stop-and-go signal cycle, and parked vehicles that never move.
 
+#include <array>
 #include <cstdint>
 #include <map>
 #include <random>
@@ -81,6 +82,7 @@ class Traffic {
   double gap_to_follower(size_t i, int lane) const;
   double spawn_gap(const Vehicle& v, double& leader_speed) const;  // for a vehicle not yet on the road
   void build_index();
+  void mark_occupied_junctions();
   double stop_line_gap(const Vehicle& v) const;
   void schedule_arrivals(LaneState& lane);
   void try_spawn(LaneState& lane);
@@ -96,6 +98,7 @@ class Traffic {
   std::vector<LaneState> lanes_;
   std::map<std::pair<int, int>, std::vector<size_t>> groups_;  // (road, direction) -> vehicles sorted by s
   std::vector<size_t> rank_;                                   // position of each vehicle in its group
+  std::vector<std::array<bool, 2>> junction_occupied_;          // per crossing: a vehicle of road_a / road_b inside
   int next_id_ = 1;
   double time_ = 0.0;
 };
