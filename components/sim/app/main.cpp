@@ -32,6 +32,8 @@ int main(int argc, char** argv) {
   app.add_option("--out", out_dir, "output folder (created)");
   app.add_option("--frames", frames, "override the number of frames")->check(CLI::Range(1, 100000));
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
+  bool print_scenario = false;
+  app.add_flag("--print-scenario", print_scenario, "print the resolved scenario as YAML and exit");
   std::string preview_file;
   int preview_frame = 1;
   double preview_scale = 1.0;
@@ -55,7 +57,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (preset.empty() && scenario_file.empty()) throw uavmot::InputError("give --preset NAME or --scenario FILE.yaml");
-    if (out_dir.empty() && preview_file.empty()) throw uavmot::InputError("give --out DIR");
+    if (out_dir.empty() && preview_file.empty() && !print_scenario) throw uavmot::InputError("give --out DIR");
     uavmot::sim::Scenario scenario;
     try {
       scenario = preset.empty() ? uavmot::sim::load_scenario_file(scenario_file) : uavmot::sim::preset_scenario(preset);
@@ -64,6 +66,10 @@ int main(int argc, char** argv) {
     }
     if (frames) scenario.frames = *frames;
     uavmot::sim::validate_scenario(scenario);
+    if (print_scenario) {
+      std::cout << uavmot::sim::scenario_to_yaml(scenario);
+      return 0;
+    }
     std::cerr << "uavmot-sim: scenario '" << scenario.name << "', " << scenario.frames << " frames "
               << scenario.camera.width << "x" << scenario.camera.height << ", seed " << seed << " -> " << out_dir << "\n";
     if (!preview_file.empty()) {

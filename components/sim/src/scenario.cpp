@@ -4,6 +4,8 @@
 #include <optional>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "scenario_fields.hpp"
 #include "uavmot/core/error.hpp"
 
@@ -73,10 +75,8 @@ class YamlWriter : public detail::FieldVisitor {
   void end_section() override { indent_.clear(); }
   void field(const char* key, int& value, int, int) override { out_ << indent_ << key << ": " << value << "\n"; }
   void field(const char* key, double& value, double, double) override {
-    std::ostringstream number;
-    number.precision(17);
-    number << value;
-    out_ << indent_ << key << ": " << number.str() << "\n";
+    // Shortest text that reads back to the same double.
+    out_ << indent_ << key << ": " << fmt::format("{}", value) << "\n";
   }
   void field(const char* key, bool& value) override { out_ << indent_ << key << ": " << (value ? "true" : "false") << "\n"; }
   void field(const char* key, std::string& value) override { out_ << indent_ << key << ": \"" << value << "\"\n"; }
