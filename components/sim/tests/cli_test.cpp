@@ -64,10 +64,11 @@ TEST_F(SimCli, WritesAnMotChallengeSequence) {
 
 TEST_F(SimCli, FramesOverrideAndSameSeedSameBytes) {
   const std::string a = (dir_ / "a" / "seq").string(), b = (dir_ / "b" / "seq").string();
-  const std::string common = "--scenario " + write("t.yaml", "camera:\n  width: 256\n  height: 192\nsensor:\n  write_video: false\n");
+  const std::string common = "--scenario " + write("t.yaml", "camera:\n  width: 256\n  height: 192\n");
   ASSERT_EQ(run(common + " --seed 9 --frames 2 --out " + a + " -q").code, 0);
   ASSERT_EQ(run(common + " --seed 9 --frames 2 --out " + b + " -q").code, 0);
-  for (const char* f : {"img1/000002.jpg", "gt/gt_obb.csv", "gt/homographies.txt", "gt/masks/000002.png", "meta.json", "seqinfo.ini"}) {
+  for (const char* f : {"img1/000001.jpg", "img1/000002.jpg", "gt/gt.txt", "gt/all_objects.txt", "gt/gt_obb.csv",
+                        "gt/homographies.txt", "gt/masks/000002.png", "meta.json", "seqinfo.ini", "video.mp4"}) {
     std::ifstream fa(fs::path(a) / f, std::ios::binary), fb(fs::path(b) / f, std::ios::binary);
     std::stringstream sa, sb;
     sa << fa.rdbuf();
