@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
   app.add_option("--json", json_file, "also write the results as JSON to this file");
   app.add_option("--min-visibility", options.min_visibility, "moving objects less visible than this are not scored")->check(CLI::Range(0.0, 1.0));
   app.add_option("--min-object-coverage", options.min_object_coverage,
-                 "Table I: a box belongs to an object covering at least this share of the object's area")->check(CLI::Range(0.01, 1.0));
+                 "Table I: a box belongs to an object when it covers at least this share of the object area")->check(CLI::Range(0.01, 1.0));
   app.add_option("--min-box-on-object", options.min_box_on_object,
                  "Table I: ... or when at least this share of the box lies on the object")->check(CLI::Range(0.01, 1.0));
   app.add_option("--first-frame", options.first_frame, "first frame to score")->check(CLI::NonNegativeNumber);

@@ -252,19 +252,23 @@ void paint_roads(cv::Mat& raster, const GroundRaster& geo, const Scenario& scena
 
 }  // namespace
 
+cv::Size checked_raster_size(const Scenario& scenario, cv::Rect2d region, double raster_gsd) {
+  const double width = std::ceil(region.width / raster_gsd) + 1.0, height = std::ceil(region.height / raster_gsd) + 1.0;
+  const double megapixels = width * height / 1e6;
+  if (!(megapixels <= scenario.ground.raster_max_megapixels))
+    throw InputError("scenario '" + scenario.name + "' needs a ground raster of " + std::to_string(static_cast<int64_t>(width)) +
+                     " x " + std::to_string(static_cast<int64_t>(height)) + " px (" + std::to_string(static_cast<int64_t>(megapixels)) +
+                     " MP), more than ground.raster_max_megapixels = " + std::to_string(scenario.ground.raster_max_megapixels) +
+                     "; use fewer frames or a slower camera");
+  return {static_cast<int>(width), static_cast<int>(height)};
+}
+
 GroundRaster build_ground_raster(const Scenario& scenario, const RoadNetwork& network, cv::Rect2d region, double raster_gsd,
                                  uint64_t seed) {
   GroundRaster ground;
   ground.gsd_m = raster_gsd;
   ground.origin_m = {region.x, region.y};
-  const cv::Size size(static_cast<int>(std::ceil(region.width / raster_gsd)) + 1,
-                      static_cast<int>(std::ceil(region.height / raster_gsd)) + 1);
-  const double megapixels = static_cast<double>(size.width) * size.height / 1e6;
-  if (megapixels > scenario.ground.raster_max_megapixels)
-    throw InputError("scenario '" + scenario.name + "' needs a ground raster of " + std::to_string(size.width) + " x " +
-                     std::to_string(size.height) + " px (" + std::to_string(static_cast<int>(megapixels)) +
-                     " MP), more than ground.raster_max_megapixels = " +
-                     std::to_string(scenario.ground.raster_max_megapixels) + "; shorten frames or slow the camera");
+  const cv::Size size = checked_raster_size(scenario, region, raster_gsd);
   // The mosaic at the texture's resolution, then resampled to the raster.
   const double texture_gsd = scenario.ground.texture_gsd_m;
   const cv::Size texture_size(std::max(2, static_cast<int>(std::ceil(region.width / texture_gsd)) + 2),

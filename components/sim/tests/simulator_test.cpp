@@ -245,3 +245,20 @@ TEST(Simulator, DenseTrafficHasManyMoversAndParkedVehicles) {
 
 }  // namespace
 }  // namespace uavmot::sim
+
+namespace uavmot::sim {
+namespace {
+
+TEST(Simulator, TooLargeAGroundAreaIsRefusedQuickly) {
+  Scenario s = preset_scenario("fastcam");
+  s.frames = 100000;
+  try {
+    Simulator sim(s, 1);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("raster_max_megapixels"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace uavmot::sim
