@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
@@ -258,6 +259,36 @@ TEST(Simulator, TooLargeAGroundAreaIsRefusedQuickly) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("raster_max_megapixels"), std::string::npos) << e.what();
   }
+}
+
+}  // namespace
+}  // namespace uavmot::sim
+
+namespace uavmot::sim {
+namespace {
+
+TEST(Simulator, VehiclesEnterAndLeaveTheView) {
+  Scenario s = testing::small_scenario("paper", 60);
+  const auto frames = run(s, 6);
+  std::set<int> first, last, all;
+  for (const ObjectTruth& o : frames.front().objects) first.insert(o.id);
+  for (const ObjectTruth& o : frames.back().objects) last.insert(o.id);
+  for (const SimFrame& f : frames)
+    for (const ObjectTruth& o : f.objects) {
+      all.insert(o.id);
+      EXPECT_GT(o.visibility, 0.0);
+      EXPECT_LE(o.visibility, 1.0);
+    }
+  int entered = 0, left = 0;
+  for (int id : all) {
+    if (!first.count(id)) ++entered;
+    if (!last.count(id)) ++left;
+  }
+  EXPECT_GT(entered, 0);
+  EXPECT_GT(left, 0);
+  // Ids are given in order of first appearance, from 1.
+  EXPECT_EQ(*all.begin(), 1);
+  EXPECT_EQ(*all.rbegin(), static_cast<int>(all.size()));
 }
 
 }  // namespace
