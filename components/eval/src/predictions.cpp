@@ -118,6 +118,19 @@ void Predictions::add_boxes(int64_t frame, const std::vector<OrientedBox>& list)
   }
 }
 
+void Predictions::add_regions(const SegmentationResult& segmentation, SegmentationMethod method) {
+  std::vector<OrientedBox> list;
+  for (const Region& r : segmentation.regions)
+    if (r.method == method) list.push_back(r.box);
+  add_boxes(segmentation.frame_index, list);
+}
+
+void Predictions::add_clusters(const SegmentationResult& segmentation) {
+  std::vector<OrientedBox> list;
+  for (const FeatureCluster& c : segmentation.clusters) list.push_back(c.box);
+  add_boxes(segmentation.frame_index, list);
+}
+
 void Predictions::add_motion(const MotionEstimate& motion) {
   if (motion.quality.valid) homographies[motion.frame_index] = motion.homography;
   auto& list = features[motion.frame_index];

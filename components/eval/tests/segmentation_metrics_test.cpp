@@ -135,3 +135,28 @@ TEST(Evaluate, RejectsBadOptions) {
 
 }  // namespace
 }  // namespace uavmot::eval
+
+namespace uavmot::eval {
+namespace {
+
+TEST(Predictions, RegionsOfOneMethodAndClustersFromASegmentationResult) {
+  SegmentationResult seg;
+  seg.frame_index = 1;
+  seg.regions = {{OrientedBox{10, 10, 4, 10, 0}, SegmentationMethod::Fusion, 1.0, -1},
+                 {OrientedBox{30, 10, 4, 10, 0}, SegmentationMethod::Korn, 1.0, -1},
+                 {OrientedBox{50, 10, 4, 10, 0}, SegmentationMethod::Fusion, 1.0, -1}};
+  FeatureCluster cluster;
+  cluster.box = OrientedBox{20, 10, 4, 30, 0};
+  seg.clusters = {cluster};
+  Predictions fusion, clusters;
+  fusion.add_regions(seg, SegmentationMethod::Fusion);
+  clusters.add_clusters(seg);
+  ASSERT_EQ(fusion.boxes.at(1).size(), 2u);
+  EXPECT_DOUBLE_EQ(fusion.boxes.at(1)[1].oriented->cx, 50.0);
+  EXPECT_EQ(fusion.boxes.at(1)[0].id, -1);
+  EXPECT_FALSE(fusion.has_identities());
+  ASSERT_EQ(clusters.boxes.at(1).size(), 1u);
+}
+
+}  // namespace
+}  // namespace uavmot::eval

@@ -42,6 +42,9 @@ struct Predictions {
   void add_tracks(const TrackList& tracks, bool include_unconfirmed = false);
   // Boxes without identity, e.g. segmentation regions or feature clusters of one frame.
   void add_boxes(int64_t frame, const std::vector<OrientedBox>& boxes);
+  // Regions of one segmentation method (paper Table I rows), or the feature clusters.
+  void add_regions(const SegmentationResult& segmentation, SegmentationMethod method);
+  void add_clusters(const SegmentationResult& segmentation);
   // The homography and classified features of one frame.
   void add_motion(const MotionEstimate& motion);
   bool has_identities() const;  // any box with id >= 0
