@@ -14,7 +14,6 @@
 namespace uavmot::sim::detail {
 namespace {
 namespace fs = std::filesystem;
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<std::string> list_images(const std::string& dir) {
   std::error_code ec;
@@ -247,7 +246,6 @@ void paint_roads(cv::Mat& raster, const GroundRaster& geo, const Scenario& scena
       }
     }
   }
-  (void)kPi;
 }
 
 }  // namespace
