@@ -48,5 +48,17 @@ TEST(MotionOptions, EstimatorRejectsInconsistentOptions) {
   EXPECT_THROW(MotionEstimator{o}, InputError);
 }
 
+TEST(MotionOptions, GroundSpeedThresholdUsesTheScene) {
+  MotionOptions o;
+  o.min_moving_speed_px = 0.15;
+  o.min_moving_speed_mps = 3.5;  // 3.5 m/s at 0.35 m/px and 25 fps = 0.4 px/frame
+  SceneInfo scene;
+  scene.gsd_m = 0.35;
+  scene.fps = 25.0;
+  EXPECT_NEAR(MotionEstimator(o, scene).options().min_moving_speed_px, 0.4, 1e-12);
+  o.min_moving_speed_mps = 0.35;  // 0.04 px/frame: the px threshold is stricter
+  EXPECT_DOUBLE_EQ(MotionEstimator(o, scene).options().min_moving_speed_px, 0.15);
+}
+
 }  // namespace
 }  // namespace uavmot::motion
