@@ -50,7 +50,7 @@ MotionOptions load_motion_options(const ConfigNode& node) {
   node.read("position_sigma_px", o.position_sigma_px, 1e-4, 10.0);
   node.read("prior_weight", o.prior_weight, 0.0, 1000.0);
   node.read("moving_sigma_factor", o.moving_sigma_factor, 0.0, 100.0);
-  node.read("min_moving_speed_px", "min_moving_speed_mps", o.min_moving_speed_px, 0.0, 1000.0);
+  node.read("min_moving_speed_px", o.min_moving_speed_px, 0.0, 1000.0);
   node.read("confirm_frames", o.confirm_frames, 1, 100);
   node.read("release_ratio", o.release_ratio, 0.0, 1.0);
   if (o.lk_window_px % 2 == 0) node.fail("lk_window_px", "must be odd, got " + std::to_string(o.lk_window_px));
