@@ -51,6 +51,7 @@ MotionOptions load_motion_options(const ConfigNode& node) {
   node.read("prior_weight", o.prior_weight, 0.0, 1000.0);
   node.read("moving_sigma_factor", o.moving_sigma_factor, 0.0, 100.0);
   node.read("min_moving_speed_px", o.min_moving_speed_px, 0.0, 1000.0);
+  node.read("min_moving_speed_mps", o.min_moving_speed_mps, 0.0, 1000.0);
   node.read("confirm_frames", o.confirm_frames, 1, 100);
   node.read("release_ratio", o.release_ratio, 0.0, 1.0);
   if (o.lk_window_px % 2 == 0) node.fail("lk_window_px", "must be odd, got " + std::to_string(o.lk_window_px));

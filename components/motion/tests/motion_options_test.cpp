@@ -11,12 +11,14 @@ TEST(MotionOptions, DefaultsAreValid) { EXPECT_NO_THROW(validate(MotionOptions{}
 
 TEST(MotionOptions, ReadsKeysAndKeepsDefaults) {
   const auto node = ConfigNode::load_string(
-      "max_features: 500\nrobust_method: magsac\nrefine_loss: huber\nmin_moving_speed_px: 0.2\n", "m.yaml");
+      "max_features: 500\nrobust_method: magsac\nrefine_loss: huber\nmin_moving_speed_px: 0.2\nmin_moving_speed_mps: 1.5\n",
+      "m.yaml");
   const MotionOptions o = load_motion_options(node);
   EXPECT_EQ(o.max_features, 500);
   EXPECT_EQ(o.robust_method, "magsac");
   EXPECT_EQ(o.refine_loss, "huber");
   EXPECT_DOUBLE_EQ(o.min_moving_speed_px, 0.2);
+  EXPECT_DOUBLE_EQ(o.min_moving_speed_mps, 1.5);
   EXPECT_EQ(o.lk_window_px, MotionOptions{}.lk_window_px);
 }
 
