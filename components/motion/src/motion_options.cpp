@@ -16,7 +16,8 @@ MotionOptions load_motion_options(const ConfigNode& node) {
                     "min_track_frames", "position_sigma_px", "prior_weight", "moving_sigma_factor",
                     "min_moving_speed_px", "min_moving_speed_mps", "confirm_frames", "release_ratio"});
   node.read("max_features", o.max_features, 10, 100000);
-  node.read("cell_size_px", o.cell_size_px, 8, 1024);
+  node.read("cell_size_px", o.cell_size_px, 0, 1024);
+  if (o.cell_size_px > 0 && o.cell_size_px < 8) node.fail("cell_size_px", "must be 0 (automatic) or >= 8");
   node.read("features_per_cell", o.features_per_cell, 1, 64);
   node.read("min_distance_px", o.min_distance_px, 1.0, 256.0);
   node.read("corner_block_size", o.corner_block_size, 3, 15);
@@ -75,7 +76,7 @@ void require(bool ok, const std::string& message) {
 
 void validate(const MotionOptions& o) {
   require(o.max_features >= 10, "max_features must be >= 10");
-  require(o.cell_size_px >= 8, "cell_size_px must be >= 8");
+  require(o.cell_size_px == 0 || o.cell_size_px >= 8, "cell_size_px must be 0 (automatic) or >= 8");
   require(o.features_per_cell >= 1, "features_per_cell must be >= 1");
   require(o.min_distance_px >= 1.0, "min_distance_px must be >= 1");
   require(o.corner_block_size >= 3 && o.corner_block_size % 2 == 1, "corner_block_size must be odd and >= 3");

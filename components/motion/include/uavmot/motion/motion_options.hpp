@@ -11,7 +11,7 @@ namespace uavmot::motion {
 struct MotionOptions {
   // --- Shi-Tomasi detection, only where coverage is missing -------------------------------
   int max_features = 1000;          // cap on live features per frame
-  int cell_size_px = 48;            // detection grid: a cell is refilled when it holds too few features
+  int cell_size_px = 48;            // detection grid cell side; 0 = sized so the cells hold max_features
   int features_per_cell = 1;        // target features per grid cell
   double min_distance_px = 10.0;    // no new corner closer than this to any live feature
   int corner_block_size = 5;        // Shi-Tomasi neighbourhood (px)
