@@ -1,0 +1,25 @@
+#pragma once
+// Track lifecycle (paper IV-D): a track is tentative until it has `confirm_hits` region updates within
+// `confirm_window` frames; a confirmed track without region or feature support coasts on its
+// prediction for `max_coast_frames`, then waits hidden (dormant) at its last measured ground position
+// for `reacquire_max_frames` to be re-acquired, then is deleted. Tentative tracks that miss more than
+// `tentative_max_misses` frames in a row, or fail to confirm in time, are deleted at once.
+
+#include "uavmot/core/homography.hpp"
+#include "uavmot/tracking/tracker_options.hpp"
+#include "uavmot/tracking/tracker_state.hpp"
+
+namespace uavmot::tracking {
+
+enum class Fate { Keep, Dormant, Delete };
+
+// Records one frame in the track's history: a region hit, support by features only, or nothing.
+void record_frame(TrackRecord& track, bool region_hit, bool supported, const TrackerOptions& options);
+
+// What happens to a live track after record_frame().
+Fate decide_fate(const TrackRecord& track, const TrackerOptions& options);
+
+// Carries dormant tracks' anchors through the frame's homography and deletes the expired ones.
+void age_dormant(TrackerState& state, const Homography& h, const TrackerOptions& options);
+
+}  // namespace uavmot::tracking

@@ -1,0 +1,65 @@
+#pragma once
+// Assignment of local features to tracks (paper IV-B). A moving feature is linked to a track when
+// (1) it is not linked to any track, (2) it lies inside the track's Kalman prediction, (3) it lies
+// inside no other track's prediction, and (4) its motion is similar in magnitude and direction to
+// the track's. A track keeps at most `max_features_per_track` links; each stores where the feature
+// sits on the box (to_box_coordinates) so the box centre can be reconstructed from the feature
+// alone when regions merge. Links to vanished features and outliers in position or motion are removed.
+
+#include <optional>
+#include <vector>
+
+#include "uavmot/core/chain_types.hpp"
+#include "uavmot/tracking/spatial_grid.hpp"
+#include "uavmot/tracking/tracker_options.hpp"
+#include "uavmot/tracking/tracker_state.hpp"
+
+namespace uavmot::tracking {
+
+// This frame's valid moving features, by id and by position.
+class FeatureIndex {
+ public:
+  explicit FeatureIndex(std::vector<TrackedFeature> features);  // any order; stored ascending id
+
+  const std::vector<TrackedFeature>& all() const { return features_; }
+  const TrackedFeature* find(uint64_t id) const;
+  // Indices into all() of the features inside `box`, ascending.
+  std::vector<int> inside(const OrientedBox& box) const;
+
+ private:
+  std::vector<TrackedFeature> features_;
+  SpatialGrid grid_;
+};
+
+cv::Vec2d median_velocity(const std::vector<cv::Vec2d>& velocities);
+
+// Criterion (4): |v - reference| within the absolute or relative tolerance, and for a clearly moving
+// reference, a direction within the angular tolerance.
+bool similar_motion(const cv::Vec2d& v, const cv::Vec2d& reference, const TrackerOptions& options);
+
+// Where `link`'s feature at `position` puts the centre of a box shaped like `box`.
+cv::Point2d centre_from_feature(const OrientedBox& box, const FeatureLink& link, const cv::Point2d& position);
+
+// Removes links whose feature vanished or stopped moving, left the predicted box (beyond the margin),
+// moves unlike the others, or reconstructs a centre far from the median.
+void prune_feature_links(TrackRecord& track, const OrientedBox& predicted, const cv::Vec2d& track_velocity,
+                         bool velocity_known, const FeatureIndex& features, const TrackerOptions& options);
+
+// Median of the centres reconstructed by the track's linked features; nullopt with too few links.
+std::optional<cv::Point2d> reconstruct_centre(const TrackRecord& track, const OrientedBox& predicted,
+                                              const FeatureIndex& features, int min_features);
+
+// Links new features to tracks by the four criteria. `predicted` are the tracks' predictions
+// (criteria 2, 3), `posterior` their boxes after the update (stored box positions); only tracks with
+// may_link[i] get new features. `velocity_known[i]`: compare with the track's velocity, else with the
+// median motion of the candidates.
+void link_new_features(std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
+                       const std::vector<OrientedBox>& posterior, const std::vector<cv::Vec2d>& velocities,
+                       const std::vector<bool>& velocity_known, const std::vector<bool>& may_link,
+                       const FeatureIndex& features, const TrackerOptions& options);
+
+// After an unambiguous region update, lets the stored box positions follow the new box slowly.
+void refresh_feature_links(TrackRecord& track, const OrientedBox& posterior, const FeatureIndex& features,
+                           double smoothing);
+
+}  // namespace uavmot::tracking

@@ -1,0 +1,81 @@
+#pragma once
+// Every parameter of the multi-object tracking layer (paper section IV), with defaults.
+// Where the paper gives a value (20 features per track, "small" gating threshold,
+// "a few" coasting frames) the default follows it; the rest are documented in docs/tracking.md.
+
+#include <string>
+
+#include "uavmot/core/scene_info.hpp"
+#include "uavmot/core/yaml_config.hpp"
+
+namespace uavmot::tracking {
+
+struct TrackerOptions {
+  // --- Which regions are measurements -------------------------------------------------------
+  // "auto": Fusion regions when the frame has any, otherwise every region;
+  // "all": every region; or one method name (clustering, korn, morphological, lbp, fusion).
+  std::string region_method = "auto";
+
+  // --- Kalman filter (kalman_model, predictor, updater) ------------------------------------
+  double process_accel_sigma_px = 0.08;     // white-noise acceleration, px/frame^2
+  double process_size_sigma_px = 0.05;      // random walk of width and length, px/frame
+  double process_angle_sigma_deg = 1.0;     // random walk of the axis angle, deg/frame
+  double region_position_sigma_px = 1.0;    // region centre measurement noise
+  double region_size_sigma_px = 1.5;        // region width/length measurement noise
+  double region_angle_sigma_deg = 5.0;      // region angle measurement noise
+  double min_elongation_for_angle = 1.25;   // length/width below which a region's angle is ~unknown
+  double ambiguous_angle_sigma_deg = 45.0;  // angle noise used for such near-square regions
+  double reconstruction_sigma_px = 1.0;     // centre reconstructed from features (merge handling)
+  double init_velocity_sigma = 3.0;         // px/frame, new track without moving features
+  double init_velocity_sigma_features = 0.5;  // px/frame, new track started from its features' motion
+  double min_box_size_px = 1.0;             // width/length never shrink below this
+
+  // --- Region-to-track assignment (region_associator) --------------------------------------
+  // A region validates a prediction when their intersection exceeds this fraction of the smaller box
+  // (paper: "chosen small for high tolerance during validation gating").
+  double min_intersection_fraction = 0.05;
+
+  // --- Feature-to-track assignment (feature_associator) ------------------------------------
+  int max_features_per_track = 20;          // paper IV-B
+  double feature_motion_abs_tolerance = 0.5;  // px/frame: |v_feature - v_track| allowed ...
+  double feature_motion_rel_tolerance = 0.3;  // ... or this fraction of |v_track|, whichever is larger
+  double feature_direction_tolerance_deg = 30.0;  // direction check when the track moves faster than:
+  double feature_min_speed_for_direction = 0.5;   // px/frame
+  double feature_position_margin = 0.25;    // a linked feature may leave the predicted box by this fraction
+  double feature_reconstruction_outlier_px = 2.5;  // linked feature whose centre estimate is this far from the median
+  double feature_uv_smoothing = 0.2;        // how fast a feature's stored box position follows unambiguous updates
+  int min_reconstruction_features = 2;      // features needed to reconstruct a measurement
+
+  // --- Split and merge handling (split_merge) ----------------------------------------------
+  // Regions inside one track's gate are fragments of one object when their motion agrees within the
+  // feature motion tolerances and their union fits in the predicted box enlarged by this factor.
+  double fragment_union_factor = 1.4;
+  // A region shared by several tracks but no larger than SceneInfo's vehicle size times this factor
+  // holds one object tracked in pieces: the senior track keeps it, the others are absorbed. 0 disables.
+  double single_object_size_factor = 1.5;
+
+  // --- Initiation (initiator) ---------------------------------------------------------------
+  // A free region is not started as a new track while this fraction of it lies inside a live track.
+  double init_max_overlap_fraction = 0.3;
+  double min_region_area_px = 4.0;          // smaller regions are ignored
+
+  // --- Lifecycle (deleter) ------------------------------------------------------------------
+  int confirm_hits = 3;                     // region hits ...
+  int confirm_window = 5;                   // ... within this many frames confirm a tentative track
+  int tentative_max_misses = 1;             // a tentative track missing more frames in a row is deleted
+  int max_coast_frames = 5;                 // a confirmed track coasts this many frames on prediction
+  // Then it waits hidden (dormant) at its last measured ground position for this many frames and is
+  // re-acquired with the same id by a new region nearby (stop-and-go); 0 deletes it at once.
+  int reacquire_max_frames = 150;
+  double reacquire_radius_m = 3.0;          // converted to px with SceneInfo::gsd_m
+  double reacquire_size_ratio = 1.6;        // max ratio between the region's and the track's length/width
+};
+
+// Reads the `tracking:` section; every key optional, unknown keys and out-of-range values are
+// uavmot::InputError naming the file, line and key.
+TrackerOptions load_tracker_options(const ConfigNode& node);
+
+// Throws uavmot::InvalidArgument when a value is outside its documented range.
+void validate(const TrackerOptions& options);
+
+}  // namespace uavmot::tracking

@@ -1,0 +1,23 @@
+#pragma once
+// Kalman update with a region (full box) or a reconstructed centre (paper IV-C/D).
+// The axis angle is compared modulo 180 deg (axis_angle_difference_deg), and a region whose
+// width/length labelling is swapped relative to the track (a near-square box reported with the other
+// side as length) is relabelled before the update.
+
+#include "uavmot/tracking/kalman_model.hpp"
+
+namespace uavmot::tracking {
+
+// The region's box expressed with the width/length labelling closest to `predicted`.
+OrientedBox align_box_labelling(const OrientedBox& measured, const OrientedBox& predicted);
+
+KalmanState update_with_box(const KalmanState& state, const OrientedBox& measured, const BoxMeasurementNoise& noise,
+                            double min_box_size_px);
+
+// Before updating with a region after a split, the old size is no longer evidence: widen the size
+// variance by the squared size innovation so the filter adopts the new size within a few frames.
+void open_size_uncertainty(KalmanState& state, const OrientedBox& measured);
+
+KalmanState update_with_position(const KalmanState& state, const cv::Point2d& centre, double sigma_px);
+
+}  // namespace uavmot::tracking

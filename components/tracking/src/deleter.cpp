@@ -1,0 +1,41 @@
+#include "uavmot/tracking/deleter.hpp"
+
+#include <algorithm>
+#include <bit>
+
+namespace uavmot::tracking {
+
+void record_frame(TrackRecord& track, bool region_hit, bool supported, const TrackerOptions& options) {
+  ++track.age;
+  const uint32_t window_mask = options.confirm_window >= 32 ? 0xffffffffu : ((1u << options.confirm_window) - 1u);
+  track.hit_history = ((track.hit_history << 1) | (region_hit ? 1u : 0u)) & window_mask;
+  if (region_hit) ++track.hits;
+  track.frames_since_update = (region_hit || supported) ? 0 : track.frames_since_update + 1;
+  if (track.state == TrackState::Tentative) {
+    if (std::popcount(track.hit_history) >= options.confirm_hits) track.state = TrackState::Confirmed;
+    return;
+  }
+  track.state = track.frames_since_update == 0 ? TrackState::Confirmed : TrackState::Coasting;
+}
+
+Fate decide_fate(const TrackRecord& track, const TrackerOptions& options) {
+  if (track.state == TrackState::Tentative) {
+    const bool missed_too_often = static_cast<int>(track.frames_since_update) > options.tentative_max_misses;
+    const bool too_late = static_cast<int>(track.age) >= options.confirm_window;
+    return (missed_too_often || too_late) ? Fate::Delete : Fate::Keep;
+  }
+  if (static_cast<int>(track.frames_since_update) <= options.max_coast_frames) return Fate::Keep;
+  return options.reacquire_max_frames > 0 ? Fate::Dormant : Fate::Delete;
+}
+
+void age_dormant(TrackerState& state, const Homography& h, const TrackerOptions& options) {
+  for (auto& track : state.dormant) {
+    track.anchor_box = transform_box(h, track.anchor_box);
+    ++track.frames_dormant;
+  }
+  std::erase_if(state.dormant, [&](const TrackRecord& t) {
+    return static_cast<int>(t.frames_dormant) > options.reacquire_max_frames || !uavmot::is_finite(t.anchor_box);
+  });
+}
+
+}  // namespace uavmot::tracking

@@ -1,0 +1,96 @@
+#include "uavmot/tracking/initiator.hpp"
+
+#include <algorithm>
+#include <limits>
+
+#include "uavmot/tracking/kalman_model.hpp"
+#include "uavmot/tracking/spatial_grid.hpp"
+#include "uavmot/tracking/split_merge.hpp"
+
+namespace uavmot::tracking {
+namespace {
+
+bool similar_size(const OrientedBox& a, const OrientedBox& b, double ratio) {
+  auto within = [ratio](double x, double y) { return std::max(x, y) <= ratio * std::max(std::min(x, y), 1e-6); };
+  return within(a.length, b.length) && within(a.width, b.width);
+}
+
+// The track's last velocity and the region's motion must not point apart (a vehicle that left the view
+// is not re-acquired by another one driving in where it left).
+bool compatible_direction(const TrackRecord& track, const cv::Vec2d* region_velocity, double min_speed) {
+  if (region_velocity == nullptr) return true;
+  const cv::Vec2d last(track.mean[kVx], track.mean[kVy]);
+  if (cv::norm(last) < min_speed || cv::norm(*region_velocity) < min_speed) return true;
+  return last.dot(*region_velocity) > 0.0;
+}
+
+// The dormant track closest to `region` within the re-acquisition radius, or -1.
+int find_dormant(const OrientedBox& region, const cv::Vec2d* region_velocity, const std::vector<TrackRecord>& dormant,
+                 double radius_px, double ratio, double min_speed) {
+  int best = -1;
+  double best_distance = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < dormant.size(); ++i) {
+    const OrientedBox& anchor = dormant[i].anchor_box;
+    const double d = cv::norm(cv::Point2d(region.cx - anchor.cx, region.cy - anchor.cy));
+    if (d <= radius_px && d < best_distance && similar_size(region, anchor, ratio) &&
+        compatible_direction(dormant[i], region_velocity, min_speed)) {
+      best = static_cast<int>(i);
+      best_distance = d;
+    }
+  }
+  return best;
+}
+
+}  // namespace
+
+void initiate_tracks(const std::vector<int>& free_regions, const std::vector<OrientedBox>& regions,
+                     const std::vector<OrientedBox>& live_boxes, const FeatureIndex& features,
+                     const TrackerOptions& options, const SceneInfo& scene, TrackerState& state) {
+  SpatialGrid live_grid;
+  for (size_t i = 0; i < live_boxes.size(); ++i) live_grid.insert(static_cast<int>(i), axis_aligned_bounds(live_boxes[i]));
+  std::vector<OrientedBox> started;  // boxes started in this call, so two overlapping regions start one track
+  const BoxMeasurementNoise noise = box_measurement_noise(options);
+  const double radius_px = scene.metres_to_px(options.reacquire_radius_m);
+  for (const int r : free_regions) {
+    const OrientedBox& region = regions[static_cast<size_t>(r)];
+    const double area = box_area(region);
+    bool covered = false;
+    for (const int i : live_grid.query(axis_aligned_bounds(region))) {
+      covered = covered || intersection_area(region, live_boxes[static_cast<size_t>(i)]) > options.init_max_overlap_fraction * area;
+    }
+    for (const auto& s : started) covered = covered || intersection_area(region, s) > options.init_max_overlap_fraction * area;
+    if (covered) continue;
+    cv::Vec2d velocity(0.0, 0.0);
+    const bool has_motion = region_motion(region, features, velocity);
+    const KalmanState kalman = initial_state(
+        region, velocity, has_motion ? options.init_velocity_sigma_features : options.init_velocity_sigma, noise);
+    const int dormant = find_dormant(region, has_motion ? &velocity : nullptr, state.dormant, radius_px,
+                                     options.reacquire_size_ratio, options.feature_min_speed_for_direction);
+    TrackRecord track;
+    if (dormant >= 0) {
+      // Re-acquired: same id and history, fresh filter state, features relearnt.
+      track = state.dormant[static_cast<size_t>(dormant)];
+      state.dormant.erase(state.dormant.begin() + dormant);
+      track.state = TrackState::Confirmed;
+      track.frames_dormant = 0;
+      track.features.clear();
+    } else {
+      track.id = state.next_id++;
+      track.state = TrackState::Tentative;
+      track.age = 0;
+      track.hits = 0;
+      track.hit_history = 0;
+    }
+    ++track.age;
+    ++track.hits;
+    track.hit_history = (track.hit_history << 1) | 1u;
+    track.frames_since_update = 0;
+    track.anchor_box = region;
+    if (track.state == TrackState::Tentative && options.confirm_hits <= 1) track.state = TrackState::Confirmed;
+    store(kalman, track);
+    state.tracks.push_back(std::move(track));
+    started.push_back(region);
+  }
+}
+
+}  // namespace uavmot::tracking

@@ -1,0 +1,117 @@
+#include "uavmot/tracking/tracker_options.hpp"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "uavmot/core/chain_types.hpp"
+#include "uavmot/core/error.hpp"
+
+namespace uavmot::tracking {
+namespace {
+
+const std::vector<std::string>& region_method_choices() {
+  static const std::vector<std::string> choices = {"auto", "all", "clustering", "korn", "morphological", "lbp", "fusion"};
+  return choices;
+}
+
+// One table drives both the YAML reader and validate(), so the ranges cannot disagree.
+struct DoubleField {
+  const char* key;
+  double TrackerOptions::*member;
+  double min;
+  double max;
+};
+struct IntField {
+  const char* key;
+  int TrackerOptions::*member;
+  int min;
+  int max;
+};
+
+const std::vector<DoubleField>& double_fields() {
+  static const std::vector<DoubleField> fields = {
+      {"process_accel_sigma_px", &TrackerOptions::process_accel_sigma_px, 1e-6, 100.0},
+      {"process_size_sigma_px", &TrackerOptions::process_size_sigma_px, 1e-6, 100.0},
+      {"process_angle_sigma_deg", &TrackerOptions::process_angle_sigma_deg, 1e-6, 90.0},
+      {"region_position_sigma_px", &TrackerOptions::region_position_sigma_px, 1e-3, 1000.0},
+      {"region_size_sigma_px", &TrackerOptions::region_size_sigma_px, 1e-3, 1000.0},
+      {"region_angle_sigma_deg", &TrackerOptions::region_angle_sigma_deg, 1e-3, 180.0},
+      {"min_elongation_for_angle", &TrackerOptions::min_elongation_for_angle, 1.0, 10.0},
+      {"ambiguous_angle_sigma_deg", &TrackerOptions::ambiguous_angle_sigma_deg, 1e-3, 1000.0},
+      {"reconstruction_sigma_px", &TrackerOptions::reconstruction_sigma_px, 1e-3, 1000.0},
+      {"init_velocity_sigma", &TrackerOptions::init_velocity_sigma, 1e-3, 1000.0},
+      {"init_velocity_sigma_features", &TrackerOptions::init_velocity_sigma_features, 1e-3, 1000.0},
+      {"min_box_size_px", &TrackerOptions::min_box_size_px, 1e-3, 1000.0},
+      {"min_intersection_fraction", &TrackerOptions::min_intersection_fraction, 0.0, 1.0},
+      {"feature_motion_abs_tolerance", &TrackerOptions::feature_motion_abs_tolerance, 0.0, 1000.0},
+      {"feature_motion_rel_tolerance", &TrackerOptions::feature_motion_rel_tolerance, 0.0, 10.0},
+      {"feature_direction_tolerance_deg", &TrackerOptions::feature_direction_tolerance_deg, 0.0, 180.0},
+      {"feature_min_speed_for_direction", &TrackerOptions::feature_min_speed_for_direction, 0.0, 1000.0},
+      {"feature_position_margin", &TrackerOptions::feature_position_margin, 0.0, 10.0},
+      {"feature_reconstruction_outlier_px", &TrackerOptions::feature_reconstruction_outlier_px, 1e-3, 1000.0},
+      {"feature_uv_smoothing", &TrackerOptions::feature_uv_smoothing, 0.0, 1.0},
+      {"fragment_union_factor", &TrackerOptions::fragment_union_factor, 1.0, 10.0},
+      {"single_object_size_factor", &TrackerOptions::single_object_size_factor, 0.0, 100.0},
+      {"init_max_overlap_fraction", &TrackerOptions::init_max_overlap_fraction, 0.0, 1.0},
+      {"min_region_area_px", &TrackerOptions::min_region_area_px, 0.0, 1e6},
+      {"reacquire_radius_m", &TrackerOptions::reacquire_radius_m, 0.0, 1000.0},
+      {"reacquire_size_ratio", &TrackerOptions::reacquire_size_ratio, 1.0, 100.0},
+  };
+  return fields;
+}
+
+const std::vector<IntField>& int_fields() {
+  static const std::vector<IntField> fields = {
+      {"max_features_per_track", &TrackerOptions::max_features_per_track, 0, 1000},
+      {"min_reconstruction_features", &TrackerOptions::min_reconstruction_features, 1, 1000},
+      {"confirm_hits", &TrackerOptions::confirm_hits, 1, 32},
+      {"confirm_window", &TrackerOptions::confirm_window, 1, 32},
+      {"tentative_max_misses", &TrackerOptions::tentative_max_misses, 0, 1000},
+      {"max_coast_frames", &TrackerOptions::max_coast_frames, 0, 100000},
+      {"reacquire_max_frames", &TrackerOptions::reacquire_max_frames, 0, 1000000},
+  };
+  return fields;
+}
+
+}  // namespace
+
+TrackerOptions load_tracker_options(const ConfigNode& node) {
+  TrackerOptions options;
+  std::vector<std::string> known = {"region_method"};
+  for (const auto& f : double_fields()) known.emplace_back(f.key);
+  for (const auto& f : int_fields()) known.emplace_back(f.key);
+  node.expect_only(known);
+  node.read_choice("region_method", options.region_method, region_method_choices());
+  for (const auto& f : double_fields()) node.read(f.key, options.*(f.member), f.min, f.max);
+  for (const auto& f : int_fields()) node.read(f.key, options.*(f.member), f.min, f.max);
+  if (options.confirm_hits > options.confirm_window) {
+    node.fail("confirm_hits", "must not exceed confirm_window (" + std::to_string(options.confirm_window) + ")");
+  }
+  return options;
+}
+
+void validate(const TrackerOptions& options) {
+  bool known_method = false;
+  for (const auto& choice : region_method_choices()) known_method = known_method || choice == options.region_method;
+  if (!known_method) throw InvalidArgument("tracking.region_method: unknown value '" + options.region_method + "'");
+  for (const auto& f : double_fields()) {
+    const double v = options.*(f.member);
+    if (!std::isfinite(v) || v < f.min || v > f.max) {
+      throw InvalidArgument(std::string("tracking.") + f.key + ": value " + std::to_string(v) + " is outside [" +
+                            std::to_string(f.min) + ", " + std::to_string(f.max) + "]");
+    }
+  }
+  for (const auto& f : int_fields()) {
+    const int v = options.*(f.member);
+    if (v < f.min || v > f.max) {
+      throw InvalidArgument(std::string("tracking.") + f.key + ": value " + std::to_string(v) + " is outside [" +
+                            std::to_string(f.min) + ", " + std::to_string(f.max) + "]");
+    }
+  }
+  if (options.confirm_hits > options.confirm_window) {
+    throw InvalidArgument("tracking.confirm_hits must not exceed tracking.confirm_window");
+  }
+}
+
+}  // namespace uavmot::tracking

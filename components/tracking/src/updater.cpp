@@ -1,0 +1,82 @@
+#include "uavmot/tracking/updater.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <Eigen/Cholesky>
+
+namespace uavmot::tracking {
+namespace {
+
+template <int M>
+KalmanState kalman_update(const KalmanState& state, const Eigen::Matrix<double, M, kStateSize>& h,
+                          const Eigen::Matrix<double, M, 1>& innovation, const Eigen::Matrix<double, M, M>& r) {
+  const Eigen::Matrix<double, M, M> s = h * state.covariance * h.transpose() + r;
+  // K = P H^T S^-1, solved rather than inverted (S is symmetric positive definite).
+  const Eigen::Matrix<double, kStateSize, M> pht = state.covariance * h.transpose();
+  const Eigen::Matrix<double, kStateSize, M> gain = s.ldlt().solve(pht.transpose()).transpose();
+  KalmanState out;
+  out.mean = state.mean + gain * innovation;
+  // Joseph form keeps the covariance symmetric and positive definite.
+  const StateCovariance i_kh = StateCovariance::Identity() - gain * h;
+  out.covariance = i_kh * state.covariance * i_kh.transpose() + gain * r * gain.transpose();
+  out.covariance = 0.5 * (out.covariance + out.covariance.transpose());
+  out.mean(kAngle) = normalize_axis_angle_deg(out.mean(kAngle));
+  return out;
+}
+
+double labelling_cost(const OrientedBox& m, const OrientedBox& p) {
+  const double dw = (m.width - p.width) / std::max(p.width, 1.0);
+  const double dl = (m.length - p.length) / std::max(p.length, 1.0);
+  const double da = axis_angle_difference_deg(m.angle_deg, p.angle_deg) / 45.0;
+  return dw * dw + dl * dl + da * da;
+}
+
+}  // namespace
+
+OrientedBox align_box_labelling(const OrientedBox& measured, const OrientedBox& predicted) {
+  OrientedBox swapped = measured;
+  swapped.width = measured.length;
+  swapped.length = measured.width;
+  swapped.angle_deg = normalize_axis_angle_deg(measured.angle_deg + 90.0);
+  return labelling_cost(swapped, predicted) < labelling_cost(measured, predicted) ? swapped : measured;
+}
+
+KalmanState update_with_box(const KalmanState& state, const OrientedBox& measured, const BoxMeasurementNoise& noise,
+                            double min_box_size_px) {
+  const OrientedBox predicted = box_of(state.mean);
+  const OrientedBox z = align_box_labelling(measured, predicted);
+  Eigen::Matrix<double, 5, kStateSize> h = Eigen::Matrix<double, 5, kStateSize>::Zero();
+  h(0, kX) = h(1, kY) = h(2, kWidth) = h(3, kLength) = h(4, kAngle) = 1.0;
+  Eigen::Matrix<double, 5, 1> innovation;
+  innovation << z.cx - predicted.cx, z.cy - predicted.cy, z.width - predicted.width, z.length - predicted.length,
+      axis_angle_difference_deg(z.angle_deg, predicted.angle_deg);
+  // A near-square region says little about the heading.
+  const bool ambiguous = std::max(z.length, z.width) < noise.min_elongation_for_angle * std::min(z.length, z.width);
+  const double angle_sigma = ambiguous ? noise.ambiguous_angle_sigma_deg : noise.angle_sigma_deg;
+  Eigen::Matrix<double, 5, 1> variances;
+  variances << noise.position_sigma_px * noise.position_sigma_px, noise.position_sigma_px * noise.position_sigma_px,
+      noise.size_sigma_px * noise.size_sigma_px, noise.size_sigma_px * noise.size_sigma_px, angle_sigma * angle_sigma;
+  KalmanState out = kalman_update<5>(state, h, innovation, variances.asDiagonal());
+  out.mean(kWidth) = std::max(out.mean(kWidth), min_box_size_px);
+  out.mean(kLength) = std::max(out.mean(kLength), min_box_size_px);
+  return out;
+}
+
+void open_size_uncertainty(KalmanState& state, const OrientedBox& measured) {
+  const OrientedBox z = align_box_labelling(measured, box_of(state.mean));
+  const double dw = z.width - state.mean(kWidth);
+  const double dl = z.length - state.mean(kLength);
+  state.covariance(kWidth, kWidth) += dw * dw;
+  state.covariance(kLength, kLength) += dl * dl;
+}
+
+KalmanState update_with_position(const KalmanState& state, const cv::Point2d& centre, double sigma_px) {
+  Eigen::Matrix<double, 2, kStateSize> h = Eigen::Matrix<double, 2, kStateSize>::Zero();
+  h(0, kX) = h(1, kY) = 1.0;
+  Eigen::Matrix<double, 2, 1> innovation(centre.x - state.mean(kX), centre.y - state.mean(kY));
+  Eigen::Matrix<double, 2, 2> r = Eigen::Matrix<double, 2, 2>::Identity() * (sigma_px * sigma_px);
+  return kalman_update<2>(state, h, innovation, r);
+}
+
+}  // namespace uavmot::tracking

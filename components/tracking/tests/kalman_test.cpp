@@ -1,0 +1,127 @@
+// The Kalman filter with the homography as control input: prediction, covariance, update, wrap-around.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "uavmot/tracking/predictor.hpp"
+#include "uavmot/tracking/updater.hpp"
+
+namespace uavmot::tracking {
+namespace {
+
+KalmanState car_state(double angle_deg = 30.0) {
+  BoxMeasurementNoise noise;
+  return initial_state(OrientedBox{100.0, 50.0, 5.0, 15.0, angle_deg}, cv::Vec2d(2.0, -1.0), 0.5, noise);
+}
+
+TEST(KalmanPredict, IdentityHomographyMovesByTheVelocity) {
+  const KalmanState s = car_state();
+  const KalmanState p = predict(s, identity_homography(), ProcessNoise{});
+  EXPECT_NEAR(p.mean(kX), 102.0, 1e-9);
+  EXPECT_NEAR(p.mean(kY), 49.0, 1e-9);
+  EXPECT_NEAR(p.mean(kVx), 2.0, 1e-9);
+  EXPECT_NEAR(p.mean(kVy), -1.0, 1e-9);
+  EXPECT_NEAR(p.mean(kWidth), 5.0, 1e-9);
+  EXPECT_NEAR(p.mean(kLength), 15.0, 1e-9);
+  EXPECT_NEAR(p.mean(kAngle), 30.0, 1e-9);
+}
+
+TEST(KalmanPredict, TranslationHomographyShiftsPositionNotVelocity) {
+  const Homography shift(1, 0, 7, 0, 1, -3, 0, 0, 1);
+  const KalmanState p = predict(car_state(), shift, ProcessNoise{});
+  EXPECT_NEAR(p.mean(kX), 109.0, 1e-9);  // 100 + 2 (object) + 7 (camera)
+  EXPECT_NEAR(p.mean(kY), 46.0, 1e-9);   // 50 - 1 - 3
+  EXPECT_NEAR(p.mean(kVx), 2.0, 1e-9);   // ground velocity is unchanged by a pure translation
+  EXPECT_NEAR(p.mean(kVy), -1.0, 1e-9);
+  EXPECT_NEAR(p.mean(kAngle), 30.0, 1e-9);
+}
+
+TEST(KalmanPredict, RotationAndZoomTurnVelocityAndBox) {
+  // 90 deg rotation about the origin with zoom 2: (x, y) -> (-2y, 2x).
+  const Homography rot_zoom(0, -2, 0, 2, 0, 0, 0, 0, 1);
+  const KalmanState p = predict(car_state(30.0), rot_zoom, ProcessNoise{});
+  EXPECT_NEAR(p.mean(kX), -2.0 * 49.0, 1e-6);
+  EXPECT_NEAR(p.mean(kY), 2.0 * 102.0, 1e-6);
+  EXPECT_NEAR(p.mean(kVx), 2.0, 1e-6);  // (2, -1) rotated by 90 deg and doubled = (2, 4)
+  EXPECT_NEAR(p.mean(kVy), 4.0, 1e-6);
+  EXPECT_NEAR(p.mean(kLength), 30.0, 1e-6);
+  EXPECT_NEAR(p.mean(kWidth), 10.0, 1e-6);
+  EXPECT_NEAR(axis_angle_difference_deg(p.mean(kAngle), 120.0), 0.0, 1e-6);
+  // The position uncertainty scales with the zoom (variance x4) plus process noise.
+  const KalmanState s = car_state(30.0);
+  EXPECT_GT(p.covariance(kX, kX), 3.9 * s.covariance(kY, kY));
+}
+
+TEST(KalmanPredict, CovarianceGrowsWithoutMeasurements) {
+  KalmanState s = car_state();
+  double previous = s.covariance(kX, kX);
+  for (int i = 0; i < 10; ++i) {
+    s = predict(s, identity_homography(), ProcessNoise{});
+    EXPECT_GT(s.covariance(kX, kX), previous);
+    previous = s.covariance(kX, kX);
+    EXPECT_TRUE(s.covariance.isApprox(s.covariance.transpose()));
+  }
+  // Velocity uncertainty feeds the position: after 10 frames it dominates the initial 1 px.
+  EXPECT_GT(s.covariance(kX, kX), 10.0 * car_state().covariance(kX, kX));
+}
+
+TEST(KalmanPredict, JacobianMatchesConstantVelocityModelForIdentity) {
+  const StateCovariance f = transition_jacobian(car_state().mean, identity_homography());
+  StateCovariance expected = StateCovariance::Identity();
+  expected(kX, kVx) = expected(kY, kVy) = 1.0;
+  EXPECT_TRUE(f.isApprox(expected, 1e-6)) << f;
+}
+
+TEST(KalmanUpdate, BoxUpdateReducesCovarianceAndMovesTowardsMeasurement) {
+  const KalmanState s = predict(car_state(), identity_homography(), ProcessNoise{});
+  const OrientedBox measured{104.0, 49.5, 5.5, 16.0, 32.0};
+  const KalmanState u = update_with_box(s, measured, BoxMeasurementNoise{}, 1.0);
+  for (int i : {kX, kY, kWidth, kLength, kAngle}) EXPECT_LT(u.covariance(i, i), s.covariance(i, i)) << i;
+  EXPECT_GT(u.mean(kX), s.mean(kX));
+  EXPECT_LT(u.mean(kX), measured.cx);
+  EXPECT_GT(u.mean(kAngle), 30.0);
+  EXPECT_LT(u.mean(kAngle), 32.0);
+}
+
+TEST(KalmanUpdate, PositionUpdateReducesOnlyWhatItObserves) {
+  const KalmanState s = predict(car_state(), identity_homography(), ProcessNoise{});
+  const KalmanState u = update_with_position(s, {103.0, 49.0}, 1.0);
+  EXPECT_LT(u.covariance(kX, kX), s.covariance(kX, kX));
+  EXPECT_LT(u.covariance(kVx, kVx), s.covariance(kVx, kVx));  // correlated through the motion model
+  EXPECT_DOUBLE_EQ(u.covariance(kWidth, kWidth), s.covariance(kWidth, kWidth));
+  EXPECT_DOUBLE_EQ(u.mean(kLength), s.mean(kLength));
+}
+
+TEST(KalmanUpdate, AngleInnovationWrapsAroundNinetyDegrees) {
+  // Track at 89 deg, region at -89 deg: the same axis 2 deg apart, not 178 deg.
+  KalmanState s = car_state(89.0);
+  const OrientedBox measured{100.0, 50.0, 5.0, 15.0, -89.0};
+  const KalmanState u = update_with_box(s, measured, BoxMeasurementNoise{}, 1.0);
+  EXPECT_LT(std::abs(axis_angle_difference_deg(u.mean(kAngle), 90.0)), 1.0);
+  EXPECT_GT(u.mean(kAngle), -90.0);
+  EXPECT_LE(u.mean(kAngle), 90.0);
+}
+
+TEST(KalmanUpdate, SwappedWidthAndLengthAreRelabelled) {
+  // A region reported with the short side as "length" and the angle turned by 90 deg is the same box.
+  const OrientedBox predicted{100.0, 50.0, 5.0, 15.0, 10.0};
+  const OrientedBox swapped{100.0, 50.0, 15.0, 5.0, -80.0};
+  const OrientedBox aligned = align_box_labelling(swapped, predicted);
+  EXPECT_NEAR(aligned.length, 15.0, 1e-12);
+  EXPECT_NEAR(aligned.width, 5.0, 1e-12);
+  EXPECT_NEAR(axis_angle_difference_deg(aligned.angle_deg, 10.0), 0.0, 1e-12);
+  const KalmanState s = car_state(10.0);
+  const KalmanState u = update_with_box(s, swapped, BoxMeasurementNoise{}, 1.0);
+  EXPECT_NEAR(u.mean(kLength), 15.0, 1e-6);
+  EXPECT_NEAR(u.mean(kAngle), 10.0, 1e-6);
+}
+
+TEST(KalmanUpdate, NearSquareRegionBarelyMovesTheAngle) {
+  const KalmanState s = car_state(0.0);
+  const KalmanState elongated = update_with_box(s, OrientedBox{100, 50, 5, 15, 20}, BoxMeasurementNoise{}, 1.0);
+  const KalmanState square = update_with_box(s, OrientedBox{100, 50, 9, 10, 20}, BoxMeasurementNoise{}, 1.0);
+  EXPECT_GT(elongated.mean(kAngle), 5.0 * std::abs(square.mean(kAngle)));
+}
+
+}  // namespace
+}  // namespace uavmot::tracking

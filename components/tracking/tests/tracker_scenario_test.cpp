@@ -1,0 +1,365 @@
+// Tracker accuracy and identity on synthetic sequences with known truth (synthetic_scene.hpp).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "synthetic_scene.hpp"
+
+namespace uavmot::tracking::testing {
+namespace {
+
+ObjectPath car(uint64_t id, cv::Point2d start, cv::Vec2d velocity) {
+  ObjectPath o;
+  o.truth_id = id;
+  o.ground_centre = straight(start, velocity);
+  return o;
+}
+
+// A hovering UAV: the camera shakes (up to ~3 px/frame), sways in rotation and zoom and drifts slowly,
+// so every frame-to-frame homography is far from the identity and far from constant.
+CameraPath drifting_camera() {
+  return [](int frame) {
+    const double k = frame - 1;
+    const double tx = -0.3 * k + 12.0 * std::sin(2.0 * M_PI * k / 40.0);
+    const double ty = 0.2 * k + 9.0 * std::cos(2.0 * M_PI * k / 33.0);
+    const double a = (0.03 * k + 1.5 * std::sin(2.0 * M_PI * k / 50.0)) * M_PI / 180.0;
+    const double s = 1.0 + 0.0005 * k + 0.02 * std::sin(2.0 * M_PI * k / 60.0);
+    const cv::Matx33d to_origin(1, 0, -320, 0, 1, -240, 0, 0, 1);
+    const cv::Matx33d rotate_scale(s * std::cos(a), -s * std::sin(a), 0, s * std::sin(a), s * std::cos(a), 0, 0, 0, 1);
+    const cv::Matx33d back(1, 0, 320 + tx, 0, 1, 240 + ty, 0, 0, 1);
+    return Homography(back * rotate_scale * to_origin);
+  };
+}
+
+TEST(TrackerScenario, SingleCarSubPixelWithStaticCamera) {
+  SyntheticScene scene({car(1, {100, 200}, {1.5, 0.3})}, static_camera());
+  Tracker tracker;
+  const Score s = run_and_score(scene, tracker, run_for(150));
+  EXPECT_EQ(s.matched, s.truth_instances);
+  EXPECT_LT(s.mean_position_error, 0.4);
+  EXPECT_EQ(s.track_ids_of_truth.at(1).size(), 1u);
+  EXPECT_EQ(s.unmatched_confirmed_tracks, 0);
+}
+
+TEST(TrackerScenario, SingleCarUnderCameraMotionAsGoodAsStatic) {
+  SyntheticScene still({car(1, {100, 200}, {1.5, 0.3})}, static_camera());
+  SyntheticScene moving({car(1, {100, 200}, {1.5, 0.3})}, drifting_camera());
+  Tracker a;
+  Tracker b;
+  const Score s_still = run_and_score(still, a, run_for(150));
+  const Score s_moving = run_and_score(moving, b, run_for(150));
+  EXPECT_EQ(s_moving.matched, s_moving.truth_instances);
+  EXPECT_LT(s_moving.mean_position_error, 0.4);
+  EXPECT_LT(s_moving.mean_position_error, s_still.mean_position_error + 0.1);
+  EXPECT_EQ(s_moving.track_ids_of_truth.at(1).size(), 1u);
+}
+
+TEST(TrackerScenario, HomographyControlInputMatters) {
+  // Same moving-camera sequence, but the tracker is told the camera stood still: it must do clearly worse.
+  SyntheticScene with_control({car(1, {100, 200}, {1.5, 0.3})}, drifting_camera());
+  SyntheticScene without_control({car(1, {100, 200}, {1.5, 0.3})}, drifting_camera());
+  Tracker a;
+  Tracker b;
+  RunOptions blind = run_for(150);
+  blind.edit_motion = [](MotionEstimate& m) { m.homography = identity_homography(); };
+  const Score good = run_and_score(with_control, a, run_for(150));
+  const Score bad = run_and_score(without_control, b,
+                                  blind);
+  EXPECT_LT(good.mean_position_error, 0.4);
+  EXPECT_GT(bad.mean_position_error, 2.0 * good.mean_position_error + 0.3);
+}
+
+TEST(TrackerScenario, VelocityIsRelativeToTheGround) {
+  SyntheticScene scene({car(1, {100, 200}, {1.5, 0.3})}, drifting_camera());
+  Tracker tracker;
+  double worst = 0.0;
+  for (int k = 1; k <= 120; ++k) {
+    const SyntheticFrame f = scene.next();
+    const TrackList out = tracker.process(f.motion, f.segmentation);
+    if (k < 30) continue;
+    ASSERT_EQ(out.tracks.size(), 1u);
+    worst = std::max(worst, cv::norm(out.tracks[0].velocity - f.truth[0].velocity));
+  }
+  EXPECT_LT(worst, 0.15);  // px/frame; the camera moves ~1.3 px/frame
+}
+
+TEST(TrackerScenario, OvertakingKeepsIdentitiesThroughMergeAndSplit) {
+  // Lane 1 fast, lane 2 slow, 5.5 px apart: the boxes come within the merge gap for many frames.
+  SceneOptions opts;
+  opts.merge_close_objects = true;
+  SyntheticScene scene({car(1, {60, 240}, {2.0, 0.0}), car(2, {120, 245.5}, {1.0, 0.0})}, drifting_camera(), opts);
+  Tracker tracker;
+  int merged_frames = 0;
+  const auto count_merges = [&](int, std::vector<Region>& regions, const std::vector<TruthBox>& truth) {
+    if (regions.size() == 1 && truth[0].visible && truth[1].visible) ++merged_frames;
+  };
+  scene.edit_regions = count_merges;
+  const Score s = run_and_score(scene, tracker, run_for(170));
+  ASSERT_GT(merged_frames, 15);  // the scenario really merges
+  ASSERT_TRUE(s.track_ids_of_truth.count(1) && s.track_ids_of_truth.count(2));
+  EXPECT_EQ(s.track_ids_of_truth.at(1).size(), 1u);
+  EXPECT_EQ(s.track_ids_of_truth.at(2).size(), 1u);
+  EXPECT_NE(s.track_ids_of_truth.at(1).front(), s.track_ids_of_truth.at(2).front());
+  EXPECT_GT(s.matched, 0.95 * s.truth_instances);
+  EXPECT_LT(s.mean_position_error, 1.0);
+  EXPECT_EQ(s.all_confirmed_ids.size(), 2u);
+}
+
+TEST(TrackerScenario, PairAppearingMergedSplitsIntoTwoTracks) {
+  // Two cars appear as one region (one track), then drive apart: the track keeps one of them, a new
+  // track starts for the other, and both boxes shrink to the single cars quickly.
+  SceneOptions opts;
+  opts.merge_close_objects = true;
+  SyntheticScene scene({car(1, {100, 240}, {1.6, 0.0}), car(2, {102, 245.5}, {1.0, 0.0})}, drifting_camera(), opts);
+  Tracker tracker;
+  int first_separate = 0;
+  scene.edit_regions = [&](int frame, std::vector<Region>& regions, const std::vector<TruthBox>&) {
+    if (regions.size() == 2 && first_separate == 0) first_separate = frame;
+  };
+  std::set<uint64_t> confirmed;
+  for (int k = 1; k <= 120; ++k) {
+    const SyntheticFrame f = scene.next();
+    const TrackList out = tracker.process(f.motion, f.segmentation);
+    for (const auto& t : out.tracks) {
+      if (t.state == TrackState::Confirmed) confirmed.insert(t.id);
+    }
+    if (first_separate == 0 || k < first_separate + 15) continue;
+    // Both cars matched, each by a car-sized box.
+    for (const auto& truth : f.truth) {
+      const Track* best = nullptr;
+      for (const auto& t : out.tracks) {
+        if (intersection_over_union(t.box, truth.box) > 0.5) best = &t;
+      }
+      ASSERT_NE(best, nullptr) << "car " << truth.id << " frame " << k;
+      EXPECT_NEAR(best->box.width, truth.box.width, 1.0);
+      EXPECT_NEAR(best->box.length, truth.box.length, 1.5);
+    }
+  }
+  ASSERT_GT(first_separate, 10);
+  EXPECT_EQ(confirmed.size(), 2u);
+}
+
+TEST(TrackerScenario, RegionSplitIntoTwoPiecesOfOneObjectStaysOneTrack) {
+  SyntheticScene scene({car(1, {100, 200}, {1.5, 0.0})}, drifting_camera());
+  // Frames 30-60: segmentation reports the car as its front and rear halves.
+  scene.edit_regions = [](int frame, std::vector<Region>& regions, const std::vector<TruthBox>&) {
+    if (frame < 30 || frame > 60 || regions.size() != 1) return;
+    const OrientedBox whole = regions[0].box;
+    Region front = regions[0];
+    Region rear = regions[0];
+    front.box.length = rear.box.length = 0.45 * whole.length;
+    front.box.cx = from_box_coordinates(whole, {0.27, 0.0}).x;
+    front.box.cy = from_box_coordinates(whole, {0.27, 0.0}).y;
+    rear.box.cx = from_box_coordinates(whole, {-0.27, 0.0}).x;
+    rear.box.cy = from_box_coordinates(whole, {-0.27, 0.0}).y;
+    regions = {front, rear};
+  };
+  Tracker tracker;
+  const Score s = run_and_score(scene, tracker, run_for(90));
+  EXPECT_EQ(s.all_confirmed_ids.size(), 1u);
+  EXPECT_EQ(s.track_ids_of_truth.at(1).size(), 1u);
+  EXPECT_EQ(s.matched, s.truth_instances);
+  EXPECT_LT(s.mean_position_error, 0.6);
+}
+
+TEST(TrackerScenario, ObjectFragmentedFromItsFirstFrameEndsAsOneTrack) {
+  // Segmentation reports the car as two halves for its first 12 frames (two tracks start), then whole.
+  SyntheticScene scene({car(1, {100, 200}, {1.5, 0.0})}, drifting_camera());
+  scene.edit_regions = [](int frame, std::vector<Region>& regions, const std::vector<TruthBox>&) {
+    if (frame > 12 || regions.size() != 1) return;
+    const OrientedBox whole = regions[0].box;
+    Region front = regions[0];
+    Region rear = regions[0];
+    front.box.length = rear.box.length = 0.45 * whole.length;
+    const cv::Point2d f = from_box_coordinates(whole, {0.27, 0.0});
+    const cv::Point2d r = from_box_coordinates(whole, {-0.27, 0.0});
+    front.box.cx = f.x;
+    front.box.cy = f.y;
+    rear.box.cx = r.x;
+    rear.box.cy = r.y;
+    regions = {front, rear};
+  };
+  Tracker tracker;
+  RunOptions run = run_for(80);
+  run.score_from_frame = 25;
+  const Score s = run_and_score(scene, tracker, run);
+  EXPECT_EQ(s.all_confirmed_ids.size(), 1u);
+  EXPECT_EQ(s.matched, s.truth_instances);
+  EXPECT_EQ(s.unmatched_confirmed_tracks, 0);
+  EXPECT_LT(s.mean_length_error, 1.0);
+}
+
+TEST(TrackerScenario, ConvoyOfFourIsFourTracks) {
+  std::vector<ObjectPath> convoy;
+  for (int i = 0; i < 4; ++i) convoy.push_back(car(static_cast<uint64_t>(i + 1), {150.0 - 22.0 * i, 250}, {1.4, -0.5}));
+  SyntheticScene scene(convoy, drifting_camera());
+  Tracker tracker;
+  const Score s = run_and_score(scene, tracker, run_for(120));
+  EXPECT_EQ(s.all_confirmed_ids.size(), 4u);
+  for (uint64_t id = 1; id <= 4; ++id) EXPECT_EQ(s.track_ids_of_truth.at(id).size(), 1u) << "vehicle " << id;
+  EXPECT_EQ(s.matched, s.truth_instances);
+  EXPECT_LT(s.mean_position_error, 0.5);
+}
+
+TEST(TrackerScenario, VehicleLeavingAndReenteringTheView) {
+  // The camera pans right past the car and back: it leaves the view on the left and re-enters.
+  const CameraPath pan = [](int frame) {
+    const double shift = frame < 60 ? -6.0 * (frame - 1) : -6.0 * 59 + 6.0 * (frame - 60);
+    return Homography(1, 0, shift, 0, 1, 0, 0, 0, 1);
+  };
+  SyntheticScene scene({car(1, {200, 240}, {1.0, 0.2})}, pan);
+  Tracker tracker;
+  std::vector<std::pair<int, uint64_t>> visible_ids;  // (frame, id) while visible
+  for (int k = 1; k <= 130; ++k) {
+    const SyntheticFrame f = scene.next();
+    const TrackList out = tracker.process(f.motion, f.segmentation);
+    for (const auto& t : out.tracks) {
+      // Never a track far outside the view while nothing is there.
+      if (!f.truth[0].visible && t.state == TrackState::Confirmed) {
+        ADD_FAILURE() << "confirmed track without object at frame " << k;
+      }
+      if (t.state == TrackState::Confirmed && f.truth[0].visible) visible_ids.emplace_back(k, t.id);
+    }
+  }
+  ASSERT_FALSE(visible_ids.empty());
+  // Within each visible stretch the id never changes, and at most one track is confirmed per frame.
+  for (size_t i = 1; i < visible_ids.size(); ++i) {
+    if (visible_ids[i].first == visible_ids[i - 1].first + 1) {
+      EXPECT_EQ(visible_ids[i].second, visible_ids[i - 1].second) << "frame " << visible_ids[i].first;
+    }
+    EXPECT_NE(visible_ids[i].first, visible_ids[i - 1].first);
+  }
+  // Tracked in both stretches.
+  EXPECT_LT(visible_ids.front().first, 40);
+  EXPECT_GT(visible_ids.back().first, 110);
+}
+
+TEST(TrackerScenario, StopAndGoKeepsItsIdentity) {
+  // Drives 60 frames, stands still for 100 frames (4 s at 25 fps: no region, no moving feature), drives on.
+  ObjectPath o;
+  o.truth_id = 1;
+  o.ground_centre = [](int frame) {
+    const double v = 1.5;
+    if (frame <= 60) return cv::Point2d(100 + v * (frame - 1), 200);
+    if (frame <= 160) return cv::Point2d(100 + v * 59, 200);
+    return cv::Point2d(100 + v * 59 + v * (frame - 160), 200);
+  };
+  o.heading_deg = [](int) { return 0.0; };
+  SyntheticScene scene({o}, drifting_camera());
+  Tracker tracker;
+  const Score s = run_and_score(scene, tracker, run_for(230));
+  ASSERT_TRUE(s.track_ids_of_truth.count(1));
+  EXPECT_EQ(s.track_ids_of_truth.at(1).size(), 1u);
+  EXPECT_EQ(s.all_confirmed_ids.size(), 1u);
+  EXPECT_GT(s.matched, 0.95 * s.truth_instances);
+}
+
+TEST(TrackerScenario, BusyRoadWithMissesAndClutter) {
+  // Two lanes each way, twelve cars overtaking each other (merged regions while close), 10 % of
+  // regions missed, three false regions per frame, the hovering camera.
+  std::vector<ObjectPath> cars;
+  for (int i = 0; i < 6; ++i) {
+    cars.push_back(car(static_cast<uint64_t>(i + 1), {40.0 + 35.0 * i, 200.0 + 6.0 * (i % 2)}, {1.2 + 0.25 * (i % 3), 0.0}));
+    cars.push_back(car(static_cast<uint64_t>(i + 7), {600.0 - 35.0 * i, 225.0 + 6.0 * (i % 2)}, {-1.0 - 0.3 * (i % 3), 0.0}));
+  }
+  SceneOptions opts;
+  opts.merge_close_objects = true;
+  opts.region_miss_probability = 0.1;
+  opts.clutter_regions_per_frame = 3;
+  SyntheticScene scene(cars, drifting_camera(), opts);
+  int merged = 0;
+  scene.edit_regions = [&](int, std::vector<Region>& regions, const std::vector<TruthBox>& truth) {
+    int moving = 0;
+    for (const auto& t : truth) moving += (t.visible && t.moving) ? 1 : 0;
+    if (static_cast<int>(regions.size()) - 3 < moving - 2) ++merged;  // clearly fewer regions than cars
+  };
+  Tracker tracker;
+  const Score s = run_and_score(scene, tracker, run_for(200));
+  EXPECT_GT(merged, 10);
+  EXPECT_GT(s.matched, 0.95 * s.truth_instances) << s.matched << " of " << s.truth_instances;
+  EXPECT_LT(s.mean_position_error, 1.0);
+  EXPECT_LT(s.mean_width_error, 1.0);
+  EXPECT_LT(s.mean_length_error, 1.5);
+  int switches = 0;
+  for (const auto& [truth, ids] : s.track_ids_of_truth) switches += static_cast<int>(ids.size()) - 1;
+  EXPECT_LE(switches, 1);
+  EXPECT_LT(s.unmatched_confirmed_tracks, s.matched / 100);  // clutter never confirms
+}
+
+TEST(TrackerScenario, ParkedVehicleGetsNoTrack) {
+  ObjectPath parked;
+  parked.truth_id = 1;
+  parked.ground_centre = [](int) { return cv::Point2d(300, 200); };
+  parked.heading_deg = [](int) { return 30.0; };
+  SyntheticScene scene({parked}, drifting_camera());
+  Tracker tracker;
+  for (int k = 1; k <= 60; ++k) {
+    const SyntheticFrame f = scene.next();
+    EXPECT_TRUE(tracker.process(f.motion, f.segmentation).tracks.empty());
+  }
+}
+
+TEST(TrackerScenario, AngleWrapAroundKeepsAStableBox) {
+  // Heading ~90 deg: region angles jitter across +-90 (e.g. 89.2, -89.5), which is the same axis.
+  ObjectPath o;
+  o.truth_id = 1;
+  o.ground_centre = straight({300, 100}, {0.0, 1.5});
+  o.heading_deg = [](int) { return 90.0; };
+  SceneOptions opts;
+  opts.region_angle_noise_deg = 2.0;
+  SyntheticScene scene({o}, static_camera(), opts);
+  Tracker tracker;
+  int wrapped = 0;
+  scene.edit_regions = [&](int, std::vector<Region>& regions, const std::vector<TruthBox>&) {
+    for (const auto& r : regions) wrapped += r.box.angle_deg < 0.0 ? 1 : 0;
+  };
+  for (int k = 1; k <= 150; ++k) {
+    const SyntheticFrame f = scene.next();
+    const TrackList out = tracker.process(f.motion, f.segmentation);
+    if (k < 10) continue;
+    ASSERT_EQ(out.tracks.size(), 1u) << "frame " << k;
+    const Track& t = out.tracks[0];
+    EXPECT_LT(std::abs(axis_angle_difference_deg(t.box.angle_deg, 90.0)), 2.0) << "frame " << k;
+    EXPECT_NEAR(t.box.length, 15.0, 0.8);
+    EXPECT_NEAR(t.box.width, 5.0, 0.8);
+    EXPECT_GT(t.box.angle_deg, -90.0);
+    EXPECT_LE(t.box.angle_deg, 90.0);
+  }
+  EXPECT_GT(wrapped, 20);  // the jitter really crosses the wrap
+}
+
+}  // namespace
+}  // namespace uavmot::tracking::testing
+
+namespace uavmot::tracking::testing {
+namespace {
+
+TEST(TrackerScenario, OncomingVehicleDoesNotInheritAStoppedVehiclesId) {
+  // Car 1 drives right and stops (no region); car 2, parked right beside that spot, drives off to the
+  // left while car 1 stands: it must get a new id, and car 1 its old one when it drives on.
+  ObjectPath stopper;
+  stopper.truth_id = 1;
+  stopper.ground_centre = [](int frame) {
+    if (frame <= 40) return cv::Point2d(100 + 1.5 * (frame - 1), 200);
+    if (frame <= 140) return cv::Point2d(100 + 1.5 * 39, 200);
+    return cv::Point2d(100 + 1.5 * 39 + 1.5 * (frame - 140), 200);
+  };
+  stopper.heading_deg = [](int) { return 0.0; };
+  ObjectPath oncoming;
+  oncoming.truth_id = 2;
+  oncoming.ground_centre = [](int frame) {
+    return frame <= 80 ? cv::Point2d(164, 201) : cv::Point2d(164 - 1.5 * (frame - 80), 201);
+  };
+  oncoming.heading_deg = [](int) { return 0.0; };
+  SyntheticScene scene({stopper, oncoming}, static_camera());
+  Tracker tracker;
+  const Score s = run_and_score(scene, tracker, run_for(180));
+  ASSERT_TRUE(s.track_ids_of_truth.count(1) && s.track_ids_of_truth.count(2));
+  EXPECT_EQ(s.track_ids_of_truth.at(1).size(), 1u);
+  EXPECT_EQ(s.track_ids_of_truth.at(2).size(), 1u);
+  EXPECT_NE(s.track_ids_of_truth.at(1).front(), s.track_ids_of_truth.at(2).front());
+}
+
+}  // namespace
+}  // namespace uavmot::tracking::testing
