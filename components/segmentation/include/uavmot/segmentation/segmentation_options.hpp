@@ -21,8 +21,9 @@ struct ClusteringOptions {
   // larger, so noisy sub-pixel velocities do not shatter one car into several clusters.
   double link_speed_difference_mps = 2.5;
   double velocity_sigma_factor = 3.0;
-  // Clusters with fewer moving features are dropped (isolated features are mostly noise).
-  int min_features = 2;
+  // Clusters with fewer moving features are dropped. 1 by default: the motion layer keeps
+  // features at least 10 px apart, so a 15 x 5 px car often carries a single moving feature.
+  int min_features = 1;
 };
 
 // The three gradient segmentations (paper III-B); each writes its own accumulator.
