@@ -1,7 +1,7 @@
 // Paper Tables I and II for clustering, korn, morphological, lbp and fusion on simulated
 // sequences (docs/segmentation.md keeps the output):
 //
-//   build/bin/uavmot-segmentation-tables --preset paper --preset dense --seed 1
+//   build/bin/uavmot-segmentation-tables --preset paper --preset dense --seed 1 [--truth-features]
 
 #include <cstdio>
 #include <exception>
@@ -20,9 +20,12 @@ int main(int argc, char** argv) {
   uint64_t seed = 1;
   int frames = 0;
   std::string config;
+  bool truth_features = false;
   app.add_option("--preset", presets, "simulator preset (repeatable)")->required();
   app.add_option("--seed", seed, "simulator seed");
   app.add_option("--frames", frames, "frames per sequence (0 = the preset's length)")->check(CLI::NonNegativeNumber);
+  app.add_flag("--truth-features", truth_features,
+               "ideal moving features from the ground truth instead of the motion layer");
   app.add_option("--config", config, "YAML file with a `segmentation:` section (defaults otherwise)");
   CLI11_PARSE(app, argc, argv);
   cv::setNumThreads(1);
@@ -30,6 +33,7 @@ int main(int argc, char** argv) {
     uavmot::segmentation::SimTablesRequest request;
     request.seed = seed;
     request.frames = frames;
+    request.truth_features = truth_features;
     if (!config.empty()) {
       request.base = uavmot::segmentation::load_segmentation_options(
           uavmot::ConfigNode::load_file(config).child("segmentation"));

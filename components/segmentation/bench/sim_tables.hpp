@@ -22,13 +22,24 @@ struct SimTablesRequest {
                                              SegmentationMethod::Morphological, SegmentationMethod::Lbp,
                                              SegmentationMethod::Fusion};
   SegmentationOptions base;  // `method` is replaced by each of `methods`
+  // false: the chain's motion layer finds the moving features (what `uavmot process` does).
+  // true: ideal features from the ground truth instead: Shi-Tomasi corners (min distance 3 px)
+  // that lie on a moving vehicle, with its true velocity. Several per car, as in the paper
+  // (297 moving features in its Fig. 2), which is what makes plain clustering under-segment.
+  bool truth_features = false;
 };
 
 struct SimTables {
   std::string preset;
   uint64_t seed = 0;
   int frames = 0;
+  bool truth_features = false;
   double gsd_m = 0.0;
+  // What the motion layer left to find: moving objects (visibility >= 0.5) per frame, and those
+  // with at least one feature classified moving on them (box grown by 1 px). Segmentation starts
+  // from moving features, so the second over the first bounds every method's correct rate.
+  int64_t moving_instances = 0;
+  int64_t instances_with_moving_feature = 0;
   std::map<SegmentationMethod, eval::EvaluationResult> results;
 };
 

@@ -160,8 +160,11 @@ std::vector<Region> Segmenter::segment_window(const cv::Mat& gray, const cv::Rec
 
   const double vehicle_length = scene_.metres_to_px(scene_.vehicle_length_m);
   const double vehicle_width = scene_.metres_to_px(scene_.vehicle_width_m);
+  SplitRule split;
+  split.max_length_px = r.split_length_factor * vehicle_length;
+  split.max_width_px = r.split_width_factor * vehicle_width;
   std::vector<Region> regions;
-  for (Blob& blob : extract_blobs(acc, threshold, r.closing_size_px, r.edge_band_px, r.box_fit, connectivity)) {
+  for (Blob& blob : extract_blobs(acc, threshold, r.closing_size_px, r.edge_band_px, r.box_fit, connectivity, 3, split)) {
     blob.box.cx += window.x;
     blob.box.cy += window.y;
     const OrientedBox& box = blob.box;

@@ -66,8 +66,8 @@ struct RegionOptions {
   FusionRule fusion_rule = FusionRule::Sum;
   // Adaptive threshold: the `threshold_quantile` quantile of the window's accumulator values,
   // but at least `threshold_min_fraction` of the accumulator's full scale.
-  double threshold_quantile = 0.8;
-  double threshold_min_fraction = 0.5;
+  double threshold_quantile = 0.7;
+  double threshold_min_fraction = 0.2;
   // Pixel connectivity of the connected components: 4, 8, or 0 = by method: 8 for lbp (its
   // accumulator is sparse, accepted pixels often touch only diagonally) and 4 for the dense
   // korn, morphological and fusion accumulators (8 would leak across the thin diagonal gap
@@ -80,6 +80,12 @@ struct RegionOptions {
   // A gradient blob is the object's outline thickened by the filters: its box is shrunk by
   // this much (px) on every side to return the object's own extent.
   double edge_band_px = 1.0;
+  // A blob wider than split_width_factor x the vehicle width, or longer than
+  // split_length_factor x its length (after the edge band), is re-thresholded on its own pixels
+  // to split it into vehicles (two cars side by side whose outlines touch); 0 disables. Width
+  // only by default: a car with its shadow is ~1.5 widths wide, a truck up to ~2.7 car lengths.
+  double split_width_factor = 2.0;
+  double split_length_factor = 0.0;
   // Plausible region sizes, as multiples of the expected vehicle length / width.
   double min_length_factor = 0.4;
   double max_length_factor = 3.0;
