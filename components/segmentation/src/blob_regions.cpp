@@ -189,4 +189,41 @@ std::vector<Blob> extract_blobs(const cv::Mat& acc, double threshold, int closin
   return blobs;
 }
 
+std::vector<GroupedBlob> group_vehicle_parts(const std::vector<Blob>& blobs, double max_length_px, double max_width_px,
+                                             double touch_px) {
+  std::vector<size_t> order(blobs.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return blobs[a].pixel_count > blobs[b].pixel_count; });
+  const bool enabled = max_length_px > 0.0 && max_width_px > 0.0;
+  std::vector<GroupedBlob> groups;
+  std::vector<std::vector<cv::Point2f>> corners;
+  for (size_t index : order) {
+    const Blob& blob = blobs[index];
+    std::vector<cv::Point2f> own;
+    for (const auto& c : box_corners(blob.box)) own.emplace_back(static_cast<float>(c.x), static_cast<float>(c.y));
+    OrientedBox touching = blob.box;
+    touching.length += 2.0 * touch_px;
+    touching.width += 2.0 * touch_px;
+    bool joined = false;
+    for (size_t g = 0; enabled && g < groups.size() && !joined; ++g) {
+      if (intersection_area(touching, groups[g].box) <= 0.0) continue;
+      std::vector<cv::Point2f> all = corners[g];
+      all.insert(all.end(), own.begin(), own.end());
+      const OrientedBox combined = oriented_box_from_rotated_rect(cv::minAreaRect(all));
+      if (combined.length > max_length_px || combined.width > max_width_px) continue;
+      groups[g].box = combined;
+      groups[g].pixel_count += blob.pixel_count;
+      ++groups[g].parts;
+      corners[g] = std::move(all);
+      joined = true;
+    }
+    if (!joined) {
+      groups.push_back({blob.box, blob.pixel_count, 1});
+      corners.push_back(std::move(own));
+    }
+  }
+  return groups;
+}
+
 }  // namespace uavmot::segmentation

@@ -50,4 +50,17 @@ std::vector<Blob> extract_blobs(const cv::Mat& acc, double threshold, int closin
                                 BoxFit fit = BoxFit::Moments, int connectivity = 8, int min_pixels = 3,
                                 const SplitRule& split = {});
 
+// Groups the blobs of one window that are parts of one vehicle (windscreen, roof and bonnet of a
+// car give separate outlines): blobs are taken largest first; one joins the first group it
+// touches (boxes grown by `touch_px` intersect) whose combined box (minimum-area rectangle of all
+// corners) stays within max_length_px x max_width_px. Returns one box per group, in the order
+// the groups were started. Limits <= 0 disable grouping.
+struct GroupedBlob {
+  OrientedBox box;
+  int pixel_count = 0;
+  int parts = 0;
+};
+std::vector<GroupedBlob> group_vehicle_parts(const std::vector<Blob>& blobs, double max_length_px, double max_width_px,
+                                             double touch_px = 1.5);
+
 }  // namespace uavmot::segmentation

@@ -86,6 +86,11 @@ struct RegionOptions {
   // only by default: a car with its shadow is ~1.5 widths wide, a truck up to ~2.7 car lengths.
   double split_width_factor = 2.0;
   double split_length_factor = 0.0;
+  // Blobs of one window that touch and together fit in group_length_factor x vehicle length
+  // by group_width_factor x vehicle width are parts of one vehicle and become one region (the
+  // windscreen and roof of a car give separate outlines); 0 disables.
+  double group_length_factor = 1.3;
+  double group_width_factor = 1.5;
   // Plausible region sizes, as multiples of the expected vehicle length / width.
   double min_length_factor = 0.4;
   double max_length_factor = 3.0;
@@ -97,8 +102,9 @@ struct RegionOptions {
   double support_margin_px = 1.5;
   // When no blob of a cluster is plausible and supported, return the cluster's box instead
   // (marked method=clustering) so that a low-contrast object is not lost; likewise, when at
-  // least max(2, min_features) of a cluster's features lie in no kept region, add the box
-  // around those features (a second car whose blob was rejected).
+  // least max(2, min_features) of a cluster's features lie farther than support_margin_px plus
+  // half a vehicle width from every kept region, add the box around those features (a second
+  // car whose blob was rejected).
   bool fallback_to_cluster_box = true;
   // A region whose box is covered by an earlier region's box for more than this fraction of
   // its area is a duplicate (nested blob, or the same blob seen from two cluster windows).
