@@ -67,8 +67,7 @@ SimTables run_sim_tables(const SimTablesRequest& request) {
     frame.stream_id = request.preset;
     frame.index = rendered.index;
     frame.image = rendered.image;
-    MotionEstimate estimate = motion.process(frame);
-    if (request.truth_features) estimate = truth_motion(rendered);
+    const MotionEstimate estimate = request.truth_features ? truth_motion(rendered) : motion.process(frame);
     for (const sim::ObjectTruth& object : rendered.objects) {
       if (!object.moving || object.visibility < 0.5) continue;
       ++tables.moving_instances;
