@@ -14,6 +14,10 @@ void add_node_options(CLI::App& app, NodeOptions& options) {
   group->add_option("--mode", options.mode, "lossless: nothing dropped, slow readers hold writers back; live: newest wins")
       ->check(CLI::IsMember({"lossless", "live"}))
       ->capture_default_str();
+  group->add_option("--wait-subscribers", options.wait_subscribers,
+                    "lossless: publish only while this many readers of the output are matched")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
   app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))
       ->capture_default_str();

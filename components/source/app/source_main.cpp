@@ -13,6 +13,7 @@
 #include "uavmot/dds/frame_convert.hpp"
 #include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/dds/node_options.hpp"
+#include "uavmot/dds/node_support.hpp"
 #include "uavmot/source/frame_source.hpp"
 
 namespace uavmot {
@@ -24,7 +25,6 @@ int source_main(int argc, char** argv) {
   std::string color = "gray";
   double rate_hz = 0.0;
   bool native_rate = false;
-  int wait_subscribers = 1;
   double wait_timeout_s = 30.0;
 
   return run_app(argc, argv, "source", "publish frames of a video, image folder or MOTChallenge sequence", [&](CLI::App& app) {
@@ -37,9 +37,8 @@ int source_main(int argc, char** argv) {
     app.add_flag("--skip-corrupt", input.skip_corrupt, "skip undecodable images with a warning instead of failing");
     auto* rate = app.add_option("--rate", rate_hz, "publish at this rate (Hz); frames are timestamped at it")->check(CLI::PositiveNumber);
     app.add_flag("--native", native_rate, "publish at the input's own frame rate (default in live mode)")->excludes(rate);
-    app.add_option("--wait-subscribers", wait_subscribers, "frame subscribers to wait for before publishing")
-        ->check(CLI::NonNegativeNumber)->capture_default_str();
     app.add_option("--wait-timeout", wait_timeout_s, "seconds to wait for subscribers")->capture_default_str();
+    node.wait_subscribers = 1;
     dds::add_node_options(app, node);
 
     return [&]() -> int {
@@ -59,6 +58,8 @@ int source_main(int argc, char** argv) {
       const bool paced = rate_hz > 0.0 || native_rate || !lossless;
       const auto period = std::chrono::nanoseconds(static_cast<int64_t>(1e9 / info.fps));
 
+      const int wait_subscribers = node.wait_subscribers;
+      if (lossless) writer->set_required_readers(wait_subscribers);
       if (wait_subscribers > 0) {
         spdlog::info("waiting for {} subscriber(s) on {}", wait_subscribers, dds::kFramesTopic);
         if (!writer->wait_for_matched(wait_subscribers, std::chrono::milliseconds(static_cast<int64_t>(wait_timeout_s * 1000)))) {
@@ -70,12 +71,16 @@ int source_main(int argc, char** argv) {
 
       Frame frame;
       int64_t published = 0;
+      // Capture times go on the wire on the wall clock (stream start + (index - 1) / rate), so every
+      // component can tell its latency; the results never depend on them.
+      const int64_t stream_start_ns = dds::wall_clock_ns();
       int exit_code = kExitOk;
       const auto start = std::chrono::steady_clock::now();
       try {
         while (!shutdown_requested() && frames->next(frame)) {
           if (paced) std::this_thread::sleep_until(start + period * (frame.index - 1));
           const auto t0 = std::chrono::steady_clock::now();
+          frame.capture_time_ns += stream_start_ns;
           auto sample = dds::to_msg(frame);
           const bool ok = lossless ? writer->write_reliably(sample) : writer->write(sample);
           if (!ok) {

@@ -36,8 +36,16 @@ class TopicWriter {
   // holds the writer back here instead of losing data, and the wait for the previous sample overlaps
   // with whatever the caller did since (e.g. decoding the next frame).
   // Returns false only when `timeout` passes without progress or shutdown is requested.
-  bool write_reliably(Sample& sample, std::chrono::milliseconds timeout = std::chrono::seconds(30)) {
+  bool write_reliably(Sample& sample, std::chrono::milliseconds timeout = std::chrono::seconds(60)) {
     const auto deadline = std::chrono::steady_clock::now() + timeout;
+    if (matched() < required_readers_) {
+      // A reader is (re)starting: publishing now would lose this sample for it.
+      spdlog::info("{}: waiting for {} reader(s), {} matched", topic_, required_readers_, matched());
+      if (!wait_for_matched(required_readers_, timeout)) {
+        spdlog::error("{}: fewer than {} readers for {} ms", topic_, required_readers_, timeout.count());
+        return false;
+      }
+    }
     if (!flush(timeout)) return false;
     while (!writer_->write(&sample)) {
       if (std::chrono::steady_clock::now() > deadline || shutdown_requested()) {
@@ -63,6 +71,10 @@ class TopicWriter {
     }
     return true;
   }
+
+  // Lossless publishing waits until at least this many readers are matched (at the start, and again
+  // whenever a reader leaves, e.g. a component being respawned).
+  void set_required_readers(int count) { required_readers_ = count; }
 
   int matched() const {
     eprosima::fastdds::dds::PublicationMatchedStatus status;
@@ -94,6 +106,7 @@ class TopicWriter {
   eprosima::fastdds::dds::DataWriter* writer_;
   std::string topic_;
   PubSubType type_;
+  int required_readers_ = 0;
   uint64_t samples_sent_ = 0;
   uint64_t bytes_sent_ = 0;
 };
