@@ -192,7 +192,7 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
     TrackRecord& t = state_.tracks[i];
     if (resolved.absorbed[i]) continue;  // a piece of another track's object
     record_frame(t, region_hit[i], supported[i], options_);
-    switch (decide_fate(t, options_)) {
+    switch (decide_fate(t, inside_view(posterior[i], options_), options_)) {
       case Fate::Keep:
         live_boxes.push_back(posterior[i]);
         live.push_back(std::move(t));

@@ -70,6 +70,8 @@ const std::vector<IntField>& int_fields() {
       {"tentative_max_misses", &TrackerOptions::tentative_max_misses, 0, 1000},
       {"max_coast_frames", &TrackerOptions::max_coast_frames, 0, 100000},
       {"reacquire_max_frames", &TrackerOptions::reacquire_max_frames, 0, 1000000},
+      {"image_width", &TrackerOptions::image_width, 0, 1000000},
+      {"image_height", &TrackerOptions::image_height, 0, 1000000},
   };
   return fields;
 }

@@ -69,6 +69,12 @@ struct TrackerOptions {
   int reacquire_max_frames = 150;
   double reacquire_radius_m = 3.0;          // converted to px with SceneInfo::gsd_m
   double reacquire_size_ratio = 1.6;        // max ratio between the region's and the track's length/width
+
+  // --- The image (set by the pipeline from the source; 0 = unknown) --------------------------
+  // A track whose predicted centre leaves the image stops being reported at once: a confirmed one
+  // goes dormant (re-acquirable if the view comes back), a tentative one is deleted.
+  int image_width = 0;
+  int image_height = 0;
 };
 
 // Reads the `tracking:` section; every key optional, unknown keys and out-of-range values are
