@@ -176,8 +176,9 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   for (size_t i = 0; i < n; ++i) {
     posterior[i] = box_of(kalman[i].mean);
     store(kalman[i], state_.tracks[i]);
+    // The anchor is the last measured box (region or features), where a stopping vehicle stands.
+    if (region_hit[i] || supported[i]) state_.tracks[i].anchor_box = posterior[i];
     if (region_hit[i]) {
-      state_.tracks[i].anchor_box = posterior[i];
       refresh_feature_links(state_.tracks[i], posterior[i], features, options_.feature_uv_smoothing);
     }
   }
