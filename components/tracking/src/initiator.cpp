@@ -10,8 +10,11 @@
 namespace uavmot::tracking {
 namespace {
 
-bool similar_size(const OrientedBox& a, const OrientedBox& b, double ratio) {
-  auto within = [ratio](double x, double y) { return std::max(x, y) <= ratio * std::max(std::min(x, y), 1e-6); };
+// Within the ratio, or within two region-size sigmas (a narrow box's width is noisy in relative terms).
+bool similar_size(const OrientedBox& a, const OrientedBox& b, double ratio, double slack_px) {
+  auto within = [ratio, slack_px](double x, double y) {
+    return std::max(x, y) <= ratio * std::max(std::min(x, y), 1e-6) || std::abs(x - y) <= slack_px;
+  };
   return within(a.length, b.length) && within(a.width, b.width);
 }
 
@@ -27,7 +30,7 @@ bool compatible_direction(const TrackRecord& track, const cv::Vec2d* region_velo
 // The dormant track closest to `region` within the re-acquisition radius, or -1.
 // Vehicles that stop and go move along their axis, so the gate is long along it and narrow across.
 int find_dormant(const OrientedBox& region, const cv::Vec2d* region_velocity, const std::vector<TrackRecord>& dormant,
-                 double radius_px, double lateral_px, double ratio, double min_speed) {
+                 double radius_px, double lateral_px, double ratio, double slack_px, double min_speed) {
   int best = -1;
   double best_distance = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < dormant.size(); ++i) {
@@ -36,7 +39,7 @@ int find_dormant(const OrientedBox& region, const cv::Vec2d* region_velocity, co
     const double along = std::abs(uv.x * anchor.length);
     const double across = std::abs(uv.y * anchor.width);
     const double d = along + across;
-    if (along <= radius_px && across <= lateral_px && d < best_distance && similar_size(region, anchor, ratio) &&
+    if (along <= radius_px && across <= lateral_px && d < best_distance && similar_size(region, anchor, ratio, slack_px) &&
         compatible_direction(dormant[i], region_velocity, min_speed)) {
       best = static_cast<int>(i);
       best_distance = d;
@@ -70,7 +73,8 @@ void initiate_tracks(const std::vector<int>& free_regions, const std::vector<Ori
     const KalmanState kalman = initial_state(
         region, velocity, has_motion ? options.init_velocity_sigma_features : options.init_velocity_sigma, noise);
     const int dormant = find_dormant(region, has_motion ? &velocity : nullptr, state.dormant, radius_px, lateral_px,
-                                     options.reacquire_size_ratio, options.feature_min_speed_for_direction);
+                                     options.reacquire_size_ratio, 2.0 * options.region_size_sigma_px,
+                                     options.feature_min_speed_for_direction);
     TrackRecord track;
     if (dormant >= 0) {
       // Re-acquired: same id and history, fresh filter state, features relearnt.
