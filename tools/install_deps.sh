@@ -17,6 +17,13 @@ packages=(
   iproute2 nftables procps psmisc python3
 )
 
+# MCAP validation (tests/mcap_js): node and npm run the official MCAP reader. Debian's nodejs
+# and npm, unless a node with npm is already installed (another node package conflicts with
+# Debian's npm, and either serves).
+if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
+  packages+=(nodejs npm)
+fi
+
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,0 +1,29 @@
+#pragma once
+// The shared shape of every uavmot-* main(): `--describe` for `uavmot --help`, CLI11 parsing,
+// and user errors turned into one clear line on stderr and a non-zero exit.
+//
+//   int main(int argc, char** argv) {
+//     return uavmot::run_app(argc, argv, "motion", "estimate camera and independent motion", [&](CLI::App& app) {
+//       ... add options ...
+//       return [&]() -> int { ... run ... return 0; };
+//     });
+//   }
+
+#include <functional>
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+namespace uavmot {
+
+// Exit codes shared by every process.
+inline constexpr int kExitOk = 0;
+inline constexpr int kExitFailure = 1;    // the run failed (e.g. a required peer never came)
+inline constexpr int kExitBadInput = 2;   // bad arguments, configuration or input files
+
+using AppBody = std::function<int()>;
+using AppSetup = std::function<AppBody(CLI::App&)>;
+
+int run_app(int argc, char** argv, const std::string& name, const std::string& description, const AppSetup& setup);
+
+}  // namespace uavmot

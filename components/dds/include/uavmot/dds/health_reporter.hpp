@@ -1,0 +1,50 @@
+#pragma once
+// Publishes a component's ComponentHealth on uavmot/health about once a second:
+// rate, processing time, latency, queue depth, drops and rejected samples.
+
+#include <chrono>
+#include <memory>
+#include <string>
+
+#include "healthPubSubTypes.h"
+#include "uavmot/dds/participant.hpp"
+
+namespace uavmot::dds {
+
+class HealthReporter {
+ public:
+  HealthReporter(Participant& participant, std::string component, std::string stream_id,
+                 std::chrono::milliseconds period = std::chrono::seconds(1));
+
+  void frame_in() { ++frames_in_; }
+  // One frame done: how long it took and how old its data was when published.
+  void frame_out(int64_t frame_index, double processing_ms, double latency_ms = 0.0);
+  void dropped(uint64_t count = 1) { dropped_ += count; }
+  void invalid_sample() { ++invalid_; }
+  void set_queue_depth(uint32_t depth) { queue_depth_ = depth; }
+  void set_bytes_out(uint64_t bytes) { bytes_out_ = bytes; }
+
+  // Publishes when the period has passed since the last report.
+  void tick();
+  // Publishes now with the given state (e.g. FINISHED or FAILED at the end) and message.
+  void report(msg::ComponentState state, const std::string& message = "");
+
+  uint64_t invalid_samples() const { return invalid_; }
+  uint64_t dropped_count() const { return dropped_; }
+
+ private:
+  std::unique_ptr<TopicWriter<msg::ComponentHealthPubSubType>> writer_;
+  std::string component_;
+  std::string stream_id_;
+  std::chrono::milliseconds period_;
+  std::chrono::steady_clock::time_point last_report_;
+  msg::ComponentState state_ = msg::ComponentState::STARTING;
+  uint64_t frames_in_ = 0, frames_out_ = 0, dropped_ = 0, invalid_ = 0, bytes_out_ = 0;
+  uint32_t queue_depth_ = 0;
+  int64_t last_frame_ = 0;
+  // Sums since the last report, for means.
+  uint64_t window_frames_ = 0;
+  double window_processing_ms_ = 0.0, window_latency_ms_ = 0.0;
+};
+
+}  // namespace uavmot::dds

@@ -1,0 +1,24 @@
+#pragma once
+// Command-line options every DDS process shares: domain, profiles, transport, delivery mode.
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "uavmot/dds/participant.hpp"
+
+namespace uavmot::dds {
+
+struct NodeOptions {
+  DdsOptions dds;
+  std::string mode = "lossless";
+  std::string log_level = "info";
+  int wait_subscribers = 0;  // lossless: publish only while this many readers are matched
+};
+
+// Adds --domain, --qos-profiles, --transport, --mode, --wait-subscribers, --log-level.
+// Call finalize() after parsing.
+void add_node_options(CLI::App& app, NodeOptions& options);
+void finalize(NodeOptions& options, const std::string& component);
+
+}  // namespace uavmot::dds

@@ -1,0 +1,57 @@
+#pragma once
+// Small pieces every chain node uses: publishing by delivery mode, end-of-stream bookkeeping,
+// latency from capture time, and once-per-cause logging of rejected samples.
+
+#include <chrono>
+#include <map>
+#include <set>
+#include <string>
+
+#include <spdlog/spdlog.h>
+
+#include "uavmot/dds/topic_writer.hpp"
+#include "uavmot/dds/topics.hpp"
+
+namespace uavmot::dds {
+
+inline int64_t wall_clock_ns() {
+  return std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count();
+}
+
+// Capture times on the wire are wall-clock (the source stamps them), so latency is now - capture.
+inline double latency_ms_since(int64_t capture_time_ns) {
+  return static_cast<double>(wall_clock_ns() - capture_time_ns) / 1e6;
+}
+
+// Lossless: wait for the readers (backpressure, nothing lost). Live: never block the chain.
+template <class PubSubType>
+bool publish(TopicWriter<PubSubType>& writer, typename PubSubType::type& sample, DeliveryMode mode) {
+  return mode == DeliveryMode::Lossless ? writer.write_reliably(sample) : writer.write(sample);
+}
+
+// Which streams have ended; a node exits when the expected number has.
+class StreamEnds {
+ public:
+  explicit StreamEnds(int expected) : expected_(expected) {}
+  void end(const std::string& stream) { ended_.insert(stream); }
+  bool ended(const std::string& stream) const { return ended_.count(stream) > 0; }
+  bool all_ended() const { return static_cast<int>(ended_.size()) >= expected_; }
+
+ private:
+  int expected_;
+  std::set<std::string> ended_;
+};
+
+// Logs a rejected sample once per cause (then every 100th), so garbage on the wire cannot flood the log.
+class RejectLog {
+ public:
+  void log(const std::string& topic, const std::string& why) {
+    const uint64_t n = ++counts_[topic + ": " + why.substr(0, why.find_first_of("0123456789"))];
+    if (n == 1 || n % 100 == 0) spdlog::warn("{}: dropped a malformed sample ({}x): {}", topic, n, why);
+  }
+
+ private:
+  std::map<std::string, uint64_t> counts_;
+};
+
+}  // namespace uavmot::dds

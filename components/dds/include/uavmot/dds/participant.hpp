@@ -1,0 +1,69 @@
+#pragma once
+// A DomainParticipant built from the XML profiles in bringup/qos, with one publisher and one
+// subscriber, that hands out typed writers and readers. Deleting it deletes every entity.
+
+#include <chrono>
+#include <map>
+#include <memory>
+#include <string>
+
+#include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/publisher/Publisher.hpp>
+#include <fastdds/dds/subscriber/Subscriber.hpp>
+#include <fastdds/dds/topic/Topic.hpp>
+#include <fastdds/dds/topic/TypeSupport.hpp>
+
+#include "uavmot/dds/topic_reader.hpp"
+#include "uavmot/dds/topic_writer.hpp"
+#include "uavmot/dds/topics.hpp"
+
+namespace uavmot::dds {
+
+struct DdsOptions {
+  int domain_id = 0;
+  std::string profiles_file;                  // empty: $UAVMOT_QOS_PROFILES, then the installed/default file
+  std::string participant_profile = "local";  // "local" (shared memory) or "udp" (between hosts)
+  std::string participant_name = "uavmot";
+  DeliveryMode mode = DeliveryMode::Lossless;
+};
+
+// Where the default profiles file is, for messages and `--help`.
+std::string default_profiles_file();
+
+class Participant {
+ public:
+  // Throws InputError when the profiles file or a profile is missing or invalid.
+  explicit Participant(DdsOptions options);
+  ~Participant();
+  Participant(const Participant&) = delete;
+  Participant& operator=(const Participant&) = delete;
+
+  const DdsOptions& options() const { return options_; }
+
+  template <class PubSubType>
+  std::unique_ptr<TopicWriter<PubSubType>> make_writer(const std::string& topic_name, TopicClass topic_class) {
+    auto* topic = topic_for(topic_name, eprosima::fastdds::dds::TypeSupport(new PubSubType()));
+    auto* writer = create_writer(topic, writer_profile(topic_class, options_.mode));
+    return std::make_unique<TopicWriter<PubSubType>>(writer, topic_name);
+  }
+
+  template <class PubSubType>
+  std::unique_ptr<TopicReader<PubSubType>> make_reader(const std::string& topic_name, TopicClass topic_class) {
+    auto* topic = topic_for(topic_name, eprosima::fastdds::dds::TypeSupport(new PubSubType()));
+    auto* reader = create_reader(topic, reader_profile(topic_class, options_.mode));
+    return std::make_unique<TopicReader<PubSubType>>(reader, topic_name);
+  }
+
+ private:
+  eprosima::fastdds::dds::Topic* topic_for(const std::string& name, eprosima::fastdds::dds::TypeSupport type);
+  eprosima::fastdds::dds::DataWriter* create_writer(eprosima::fastdds::dds::Topic* topic, const std::string& profile);
+  eprosima::fastdds::dds::DataReader* create_reader(eprosima::fastdds::dds::Topic* topic, const std::string& profile);
+
+  DdsOptions options_;
+  eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
+  eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
+  eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
+  std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
+};
+
+}  // namespace uavmot::dds

@@ -1,0 +1,114 @@
+#pragma once
+// A typed DataWriter whose every write() result is checked.
+
+#include <atomic>
+#include <chrono>
+#include <string>
+#include <thread>
+
+#include <fastdds/dds/core/status/PublicationMatchedStatus.hpp>
+#include <fastdds/dds/publisher/DataWriter.hpp>
+#include <spdlog/spdlog.h>
+
+#include "uavmot/core/shutdown.hpp"
+
+namespace uavmot::dds {
+
+template <class PubSubType>
+class TopicWriter {
+ public:
+  using Sample = typename PubSubType::type;
+
+  TopicWriter(eprosima::fastdds::dds::DataWriter* writer, std::string topic) : writer_(writer), topic_(std::move(topic)) {}
+
+  // Best-effort publish (live mode): returns false, and logs, if the middleware refused the sample.
+  bool write(Sample& sample) {
+    if (writer_->write(&sample)) {
+      count_sent(sample);
+      return true;
+    }
+    spdlog::warn("{}: write() refused a sample", topic_);
+    return false;
+  }
+
+  // Lossless publish. First waits until every matched reader acknowledged the previous sample,
+  // then writes this one; flush() waits for the last. Readers keep bounded queues, so a slow reader
+  // holds the writer back here instead of losing data, and the wait for the previous sample overlaps
+  // with whatever the caller did since (e.g. decoding the next frame).
+  // Returns false only when `timeout` passes without progress or shutdown is requested.
+  bool write_reliably(Sample& sample, std::chrono::milliseconds timeout = std::chrono::seconds(60)) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    if (matched() < required_readers_) {
+      // A reader is (re)starting: publishing now would lose this sample for it.
+      spdlog::info("{}: waiting for {} reader(s), {} matched", topic_, required_readers_, matched());
+      if (!wait_for_matched(required_readers_, timeout)) {
+        spdlog::error("{}: fewer than {} readers for {} ms", topic_, required_readers_, timeout.count());
+        return false;
+      }
+    }
+    if (!flush(timeout)) return false;
+    while (!writer_->write(&sample)) {
+      if (std::chrono::steady_clock::now() > deadline || shutdown_requested()) {
+        spdlog::error("{}: write() kept failing for {} ms", topic_, timeout.count());
+        return false;
+      }
+      writer_->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(0, 100000000));
+    }
+    count_sent(sample);
+    return true;
+  }
+
+  // Waits until every matched reader acknowledged everything written; false on timeout or shutdown.
+  bool flush(std::chrono::milliseconds timeout = std::chrono::seconds(30)) {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (writer_->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(0, 100000000)) !=
+           eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
+      if (matched() == 0) return true;  // the readers left; nobody to wait for
+      if (std::chrono::steady_clock::now() > deadline || shutdown_requested()) {
+        spdlog::error("{}: samples not acknowledged by every reader within {} ms", topic_, timeout.count());
+        return false;
+      }
+    }
+    return true;
+  }
+
+  // Lossless publishing waits until at least this many readers are matched (at the start, and again
+  // whenever a reader leaves, e.g. a component being respawned).
+  void set_required_readers(int count) { required_readers_ = count; }
+
+  int matched() const {
+    eprosima::fastdds::dds::PublicationMatchedStatus status;
+    writer_->get_publication_matched_status(status);
+    return status.current_count;
+  }
+
+  // Waits until at least `count` readers matched; false on timeout or shutdown.
+  bool wait_for_matched(int count, std::chrono::milliseconds timeout) const {
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    while (matched() < count) {
+      if (std::chrono::steady_clock::now() > deadline || shutdown_requested()) return false;
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return true;
+  }
+
+  uint64_t samples_sent() const { return samples_sent_; }
+  uint64_t bytes_sent() const { return bytes_sent_; }
+  const std::string& topic() const { return topic_; }
+  eprosima::fastdds::dds::DataWriter* native() const { return writer_; }
+
+ private:
+  void count_sent(Sample& sample) {
+    ++samples_sent_;
+    bytes_sent_ += type_.getSerializedSizeProvider(&sample)();
+  }
+
+  eprosima::fastdds::dds::DataWriter* writer_;
+  std::string topic_;
+  PubSubType type_;
+  int required_readers_ = 0;
+  uint64_t samples_sent_ = 0;
+  uint64_t bytes_sent_ = 0;
+};
+
+}  // namespace uavmot::dds

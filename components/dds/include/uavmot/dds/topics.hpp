@@ -1,0 +1,25 @@
+#pragma once
+// Topic names and QoS profile names: the DDS side of the IDL contract (docs/topics.md).
+
+#include <string>
+
+namespace uavmot::dds {
+
+inline constexpr const char* kFramesTopic = "uavmot/frames";
+inline constexpr const char* kMotionTopic = "uavmot/motion";
+inline constexpr const char* kSegmentationTopic = "uavmot/segmentation";
+inline constexpr const char* kTracksTopic = "uavmot/tracks";
+inline constexpr const char* kHealthTopic = "uavmot/health";
+
+// lossless: nothing is dropped, slow readers hold back writers. live: newest sample wins.
+enum class DeliveryMode { Lossless, Live };
+DeliveryMode parse_delivery_mode(const std::string& name);  // "lossless" | "live"
+const char* to_string(DeliveryMode mode);
+
+enum class TopicClass { Frames, Chain, Health };
+
+// Names of the endpoint profiles in bringup/qos/uavmot_qos.xml, e.g. "frames_lossless_writer".
+std::string writer_profile(TopicClass topic_class, DeliveryMode mode);
+std::string reader_profile(TopicClass topic_class, DeliveryMode mode);
+
+}  // namespace uavmot::dds

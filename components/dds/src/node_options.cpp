@@ -1,0 +1,32 @@
+#include "uavmot/dds/node_options.hpp"
+
+#include "uavmot/core/logging.hpp"
+
+namespace uavmot::dds {
+
+void add_node_options(CLI::App& app, NodeOptions& options) {
+  auto* group = app.add_option_group("DDS");
+  group->add_option("--domain", options.dds.domain_id, "DDS domain id")->check(CLI::Range(0, 232))->capture_default_str();
+  group->add_option("--qos-profiles", options.dds.profiles_file, "Fast DDS XML profiles (default: " + default_profiles_file() + ")");
+  group->add_option("--transport", options.dds.participant_profile,
+                    "participant profile: local (shared memory, one host) or udp (between hosts)")
+      ->capture_default_str();
+  group->add_option("--mode", options.mode, "lossless: nothing dropped, slow readers hold writers back; live: newest wins")
+      ->check(CLI::IsMember({"lossless", "live"}))
+      ->capture_default_str();
+  group->add_option("--wait-subscribers", options.wait_subscribers,
+                    "lossless: publish only while this many readers of the output are matched")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+  app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error or off")
+      ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))
+      ->capture_default_str();
+}
+
+void finalize(NodeOptions& options, const std::string& component) {
+  options.dds.mode = parse_delivery_mode(options.mode);
+  options.dds.participant_name = component;
+  init_logging(component, options.log_level);
+}
+
+}  // namespace uavmot::dds

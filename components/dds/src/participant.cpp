@@ -1,0 +1,101 @@
+#include "uavmot/dds/participant.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <mutex>
+#include <set>
+
+#include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
+#include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
+#include <unistd.h>
+
+#include "uavmot/core/error.hpp"
+
+namespace uavmot::dds {
+namespace fdds = eprosima::fastdds::dds;
+namespace fs = std::filesystem;
+namespace {
+
+fs::path executable_dir() {
+  std::error_code ec;
+  const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
+  return ec ? fs::path() : exe.parent_path();
+}
+
+void load_profiles_once(const std::string& file) {
+  static std::mutex mutex;
+  static std::set<std::string> loaded;
+  std::lock_guard<std::mutex> lock(mutex);
+  if (loaded.count(file)) return;
+  if (!fs::is_regular_file(file)) throw InputError("QoS profiles file '" + file + "' does not exist");
+  if (fdds::DomainParticipantFactory::get_instance()->load_XML_profiles_file(file) != ReturnCode_t::RETCODE_OK) {
+    throw InputError("QoS profiles file '" + file + "' is not valid Fast DDS XML (see the Fast DDS log above)");
+  }
+  loaded.insert(file);
+}
+}  // namespace
+
+std::string default_profiles_file() {
+  if (const char* env = std::getenv("UAVMOT_QOS_PROFILES"); env && *env) return env;
+  // Installed layout (bin/ beside share/), then the build tree's copy of bringup/qos.
+  const fs::path installed = executable_dir() / ".." / "share" / "uavmot" / "qos" / "uavmot_qos.xml";
+  if (fs::is_regular_file(installed)) return fs::weakly_canonical(installed).string();
+  return UAVMOT_DEFAULT_QOS_FILE;
+}
+
+Participant::Participant(DdsOptions options) : options_(std::move(options)) {
+  if (options_.profiles_file.empty()) options_.profiles_file = default_profiles_file();
+  load_profiles_once(options_.profiles_file);
+  auto* factory = fdds::DomainParticipantFactory::get_instance();
+  fdds::DomainParticipantQos qos;
+  if (factory->get_participant_qos_from_profile(options_.participant_profile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw InputError("participant profile '" + options_.participant_profile + "' is not in '" + options_.profiles_file + "'");
+  }
+  qos.name(options_.participant_name + "@" + std::to_string(::getpid()));
+  participant_ = factory->create_participant(options_.domain_id, qos);
+  if (!participant_) throw InputError("cannot create a DDS participant on domain " + std::to_string(options_.domain_id));
+  publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
+  subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
+  if (!publisher_ || !subscriber_) throw InputError("cannot create DDS publisher/subscriber");
+}
+
+Participant::~Participant() {
+  if (!participant_) return;
+  participant_->delete_contained_entities();
+  fdds::DomainParticipantFactory::get_instance()->delete_participant(participant_);
+}
+
+fdds::Topic* Participant::topic_for(const std::string& name, fdds::TypeSupport type) {
+  if (auto it = topics_.find(name); it != topics_.end()) return it->second;
+  if (type.register_type(participant_) != ReturnCode_t::RETCODE_OK &&
+      participant_->find_type(type.get_type_name()).empty()) {
+    throw InputError("cannot register DDS type " + type.get_type_name());
+  }
+  auto* topic = participant_->create_topic(name, type.get_type_name(), fdds::TOPIC_QOS_DEFAULT);
+  if (!topic) throw InputError("cannot create DDS topic '" + name + "'");
+  topics_[name] = topic;
+  return topic;
+}
+
+fdds::DataWriter* Participant::create_writer(fdds::Topic* topic, const std::string& profile) {
+  fdds::DataWriterQos qos;
+  if (publisher_->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw InputError("writer profile '" + profile + "' is not in '" + options_.profiles_file + "'");
+  }
+  auto* writer = publisher_->create_datawriter(topic, qos);
+  if (!writer) throw InputError("cannot create a writer on '" + topic->get_name() + "' with profile '" + profile + "'");
+  return writer;
+}
+
+fdds::DataReader* Participant::create_reader(fdds::Topic* topic, const std::string& profile) {
+  fdds::DataReaderQos qos;
+  if (subscriber_->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
+    throw InputError("reader profile '" + profile + "' is not in '" + options_.profiles_file + "'");
+  }
+  auto* reader = subscriber_->create_datareader(topic, qos);
+  if (!reader) throw InputError("cannot create a reader on '" + topic->get_name() + "' with profile '" + profile + "'");
+  return reader;
+}
+
+}  // namespace uavmot::dds

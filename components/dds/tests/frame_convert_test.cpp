@@ -1,0 +1,57 @@
+#include "uavmot/dds/frame_convert.hpp"
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+
+namespace uavmot::dds {
+namespace {
+
+Frame random_frame(int type) {
+  Frame frame;
+  frame.stream_id = "uav7";
+  frame.index = 42;
+  frame.capture_time_ns = 1'680'000'000;
+  frame.image.create(31, 17, type);
+  cv::RNG rng(1);
+  rng.fill(frame.image, cv::RNG::UNIFORM, 0, 256);
+  return frame;
+}
+
+TEST(FrameConvert, RoundTripIsBitExactForMonoAndColor) {
+  for (int type : {CV_8UC1, CV_8UC3}) {
+    const Frame in = random_frame(type);
+    const msg::Frame sample = to_msg(in);
+    EXPECT_EQ(sample.encoding(), type == CV_8UC1 ? msg::Encoding::MONO8 : msg::Encoding::BGR8);
+    std::string why;
+    const auto out = from_msg(sample, why);
+    ASSERT_TRUE(out) << why;
+    EXPECT_EQ(out->stream_id, "uav7");
+    EXPECT_EQ(out->index, 42);
+    EXPECT_EQ(out->capture_time_ns, 1'680'000'000);
+    EXPECT_EQ(out->image.type(), type);
+    EXPECT_EQ(cv::norm(out->image, in.image, cv::NORM_INF), 0.0);
+  }
+}
+
+TEST(FrameConvert, RejectsMalformedSamplesWithAReason) {
+  msg::Frame sample = to_msg(random_frame(CV_8UC1));
+  std::string why;
+  sample.data().pop_back();
+  EXPECT_FALSE(from_msg(sample, why));
+  EXPECT_NE(why.find("expected 527"), std::string::npos) << why;
+
+  sample = to_msg(random_frame(CV_8UC1));
+  sample.width(0);
+  EXPECT_FALSE(from_msg(sample, why));
+
+  sample = to_msg(random_frame(CV_8UC1));
+  sample.frame_index(0);
+  EXPECT_FALSE(from_msg(sample, why));
+
+  sample = to_msg(random_frame(CV_8UC1));
+  sample.encoding(msg::Encoding::JPEG);  // raw bytes announced as JPEG
+  EXPECT_FALSE(from_msg(sample, why));
+}
+
+}  // namespace
+}  // namespace uavmot::dds

@@ -1,0 +1,72 @@
+#include "uavmot/dds/participant.hpp"
+
+#include <thread>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+
+#include "framePubSubTypes.h"
+#include "uavmot/core/checksum.hpp"
+#include "uavmot/core/error.hpp"
+#include "uavmot/dds/frame_convert.hpp"
+
+namespace uavmot::dds {
+namespace {
+
+// A domain of its own so parallel test runs do not see each other.
+constexpr int kDomain = 91;
+
+DdsOptions options(const std::string& name, const std::string& profiles_file = "", const std::string& profile = "local") {
+  DdsOptions o;
+  o.domain_id = kDomain;
+  o.participant_name = name;
+  o.profiles_file = profiles_file;
+  o.participant_profile = profile;
+  return o;
+}
+
+TEST(Participant, MissingProfilesOrProfileNamesAreInputErrors) {
+  EXPECT_THROW(Participant(options("x", "/nonexistent.xml")), InputError);
+  EXPECT_THROW(Participant(options("x", "", "no_such_profile")), InputError);
+}
+
+TEST(Participant, LosslessFramesArriveWholeOverSharedMemory) {
+  Participant publisher_side(options("pub"));
+  Participant subscriber_side(options("sub"));
+  auto writer = publisher_side.make_writer<msg::FramePubSubType>(kFramesTopic, TopicClass::Frames);
+  auto reader = subscriber_side.make_reader<msg::FramePubSubType>(kFramesTopic, TopicClass::Frames);
+  ASSERT_TRUE(writer->wait_for_matched(1, std::chrono::seconds(10)));
+
+  // 1080p mono8 frames (2 MB): more than the reader's queue of 4, so backpressure is exercised.
+  constexpr int kFrames = 12;
+  std::vector<uint64_t> sent;
+  cv::RNG rng(7);
+  std::thread produce([&] {
+    for (int i = 1; i <= kFrames; ++i) {
+      Frame frame{"uav1", i, i * 40'000'000LL, cv::Mat(1080, 1920, CV_8UC1)};
+      rng.fill(frame.image, cv::RNG::UNIFORM, 0, 256);
+      sent.push_back(fnv1a64(frame.image.data, frame.image.total()));
+      auto sample = to_msg(frame);
+      ASSERT_TRUE(writer->write_reliably(sample, std::chrono::seconds(20)));
+    }
+    ASSERT_TRUE(writer->flush(std::chrono::seconds(20)));
+  });
+  std::vector<uint64_t> received;
+  msg::Frame sample;
+  while (static_cast<int>(received.size()) < kFrames && reader->wait_for_data(std::chrono::seconds(20))) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));  // a slow reader
+    while (reader->take(sample)) {
+      std::string why;
+      auto frame = from_msg(sample, why);
+      ASSERT_TRUE(frame) << why;
+      EXPECT_EQ(frame->index, static_cast<int64_t>(received.size()) + 1);
+      received.push_back(fnv1a64(frame->image.data, frame->image.total()));
+    }
+  }
+  produce.join();
+  EXPECT_EQ(received, sent);
+  EXPECT_EQ(writer->samples_sent(), static_cast<uint64_t>(kFrames));
+}
+
+}  // namespace
+}  // namespace uavmot::dds

@@ -1,0 +1,40 @@
+#pragma once
+// A bringup profile: which processes to start, with which arguments and environment, and what
+// to do when they exit (bringup/*.yaml; docs/launch.md).
+
+#include <map>
+#include <string>
+#include <vector>
+
+namespace uavmot::launch {
+
+struct ProcessSpec {
+  std::string name;
+  std::string command;  // a uavmot subcommand (runs uavmot-<command>) or a path to a program
+  std::vector<std::string> args;
+  std::map<std::string, std::string> env;
+  bool common_args = true;     // append the profile's common_args
+  bool required = false;         // its exit ends the launch (non-zero exit of the launch if it failed)
+  bool stop_on_failure = false;  // its failure (after respawns) ends the launch with a non-zero exit
+  bool respawn = false;        // restart after a failure (non-zero exit or signal)
+  double respawn_delay_s = 1.0;
+  int max_respawns = 3;
+  double start_delay_s = 0.2;  // pause after starting it, before the next one
+};
+
+struct Profile {
+  std::string file;
+  std::string description;
+  std::map<std::string, std::string> variables;  // defaults for ${name}; --set overrides
+  std::vector<std::string> common_args;
+  std::vector<ProcessSpec> processes;
+};
+
+// Throws InputError naming the file, line and key of anything invalid (unknown keys included).
+Profile load_profile(const std::string& file);
+
+// Replaces ${name} in every argument and environment value; throws InputError naming an
+// undefined variable and the process that uses it.
+Profile resolve(const Profile& profile, const std::map<std::string, std::string>& variables);
+
+}  // namespace uavmot::launch

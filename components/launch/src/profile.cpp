@@ -1,0 +1,92 @@
+#include "uavmot/launch/profile.hpp"
+
+#include "uavmot/core/error.hpp"
+#include "uavmot/core/yaml_config.hpp"
+
+namespace uavmot::launch {
+namespace {
+
+std::string substitute(const std::string& text, const std::map<std::string, std::string>& variables,
+                       const std::string& where) {
+  std::string out;
+  size_t pos = 0;
+  while (true) {
+    const size_t start = text.find("${", pos);
+    if (start == std::string::npos) {
+      out += text.substr(pos);
+      return out;
+    }
+    const size_t end = text.find('}', start);
+    if (end == std::string::npos) throw InputError(where + ": unterminated '${' in '" + text + "'");
+    const std::string name = text.substr(start + 2, end - start - 2);
+    const auto it = variables.find(name);
+    if (it == variables.end()) {
+      throw InputError(where + ": variable '${" + name + "}' is not defined (set it with --set " + name + "=VALUE)");
+    }
+    out += text.substr(pos, start - pos) + it->second;
+    pos = end + 1;
+  }
+}
+
+}  // namespace
+
+Profile load_profile(const std::string& file) {
+  const ConfigNode root = ConfigNode::load_file(file);
+  root.expect_only({"description", "variables", "common_args", "processes"});
+  Profile profile;
+  profile.file = file;
+  root.read("description", profile.description);
+  root.read("common_args", profile.common_args);
+  if (root.has("variables")) {
+    const ConfigNode vars = root.child("variables");
+    for (const auto& key : vars.keys()) {
+      std::string value;
+      vars.read(key, value);
+      profile.variables[key] = value;
+    }
+  }
+  const auto processes = root.children("processes");
+  if (processes.empty()) root.fail("processes", "a profile needs a list of processes");
+  for (const auto& node : processes) {
+    node.expect_only({"name", "command", "args", "env", "common_args", "required", "stop_on_failure", "respawn", "respawn_delay",
+                      "max_respawns", "start_delay"});
+    ProcessSpec spec;
+    node.read("name", spec.name);
+    node.read("command", spec.command);
+    if (spec.name.empty()) node.fail("name", "every process needs a name");
+    if (spec.command.empty()) node.fail("command", "every process needs a command");
+    for (const auto& other : profile.processes) {
+      if (other.name == spec.name) node.fail("name", "duplicate process name '" + spec.name + "'");
+    }
+    node.read("args", spec.args);
+    node.read("common_args", spec.common_args);
+    node.read("required", spec.required);
+    node.read("stop_on_failure", spec.stop_on_failure);
+    node.read("respawn", spec.respawn);
+    node.read("respawn_delay", spec.respawn_delay_s, 0.0, 3600.0);
+    node.read("max_respawns", spec.max_respawns, 0, 1000000);
+    node.read("start_delay", spec.start_delay_s, 0.0, 3600.0);
+    if (node.has("env")) {
+      const ConfigNode env = node.child("env");
+      for (const auto& key : env.keys()) env.read(key, spec.env[key]);
+    }
+    profile.processes.push_back(std::move(spec));
+  }
+  return profile;
+}
+
+Profile resolve(const Profile& profile, const std::map<std::string, std::string>& variables) {
+  std::map<std::string, std::string> all = profile.variables;
+  for (const auto& [k, v] : variables) all[k] = v;
+  Profile out = profile;
+  for (auto& arg : out.common_args) arg = substitute(arg, all, profile.file + ": common_args");
+  for (auto& p : out.processes) {
+    const std::string where = profile.file + ": process '" + p.name + "'";
+    p.command = substitute(p.command, all, where);
+    for (auto& arg : p.args) arg = substitute(arg, all, where);
+    for (auto& [k, v] : p.env) v = substitute(v, all, where);
+  }
+  return out;
+}
+
+}  // namespace uavmot::launch

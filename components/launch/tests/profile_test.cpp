@@ -1,0 +1,93 @@
+#include "uavmot/launch/profile.hpp"
+
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+
+#include "uavmot/core/error.hpp"
+
+namespace uavmot::launch {
+namespace {
+
+std::string write_profile(const std::string& name, const std::string& text) {
+  const auto path = std::filesystem::temp_directory_path() / name;
+  std::ofstream(path) << text;
+  return path.string();
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+TEST(LaunchProfile, ShippedProfilesLoadAndResolve) {
+  for (const char* name : {"local.yaml"}) {
+    const auto profile = load_profile(std::string(UAVMOT_SOURCE_DIR) + "/bringup/" + name);
+    EXPECT_FALSE(profile.processes.empty()) << name;
+    const auto resolved = resolve(profile, {{"input", "seq"}, {"out", "o"}, {"gsd", "0.35"}, {"fps", "25"}, {"profile_dir", "."}});
+    for (const auto& p : resolved.processes) {
+      for (const auto& a : p.args) EXPECT_EQ(a.find("${"), std::string::npos) << name << " " << p.name << " " << a;
+    }
+  }
+}
+
+TEST(LaunchProfile, ReadsEveryField) {
+  const auto file = write_profile("uavmot_profile_fields.yaml", R"(
+description: test
+variables: {domain: "3"}
+common_args: [--domain, "${domain}"]
+processes:
+  - name: a
+    command: source
+    args: ["${input}"]
+    env: {X: "${domain}"}
+    respawn: true
+    respawn_delay: 0.5
+    max_respawns: 2
+    stop_on_failure: true
+  - name: b
+    command: sink
+    required: true
+    common_args: false
+)");
+  const auto profile = resolve(load_profile(file), {{"input", "seq"}});
+  ASSERT_EQ(profile.processes.size(), 2u);
+  EXPECT_EQ(profile.common_args, (std::vector<std::string>{"--domain", "3"}));
+  EXPECT_EQ(profile.processes[0].args, std::vector<std::string>{"seq"});
+  EXPECT_EQ(profile.processes[0].env.at("X"), "3");
+  EXPECT_TRUE(profile.processes[0].respawn);
+  EXPECT_DOUBLE_EQ(profile.processes[0].respawn_delay_s, 0.5);
+  EXPECT_EQ(profile.processes[0].max_respawns, 2);
+  EXPECT_TRUE(profile.processes[0].stop_on_failure);
+  EXPECT_TRUE(profile.processes[1].required);
+  EXPECT_FALSE(profile.processes[1].common_args);
+}
+
+TEST(LaunchProfile, TypoIsNamedWithItsLine) {
+  const auto file = write_profile("uavmot_profile_typo.yaml", "processes:\n  - name: a\n    command: source\n    respwn: true\n");
+  const std::string error = error_of([&] { load_profile(file); });
+  EXPECT_NE(error.find("uavmot_profile_typo.yaml:4"), std::string::npos) << error;
+  EXPECT_NE(error.find("did you mean 'respawn'"), std::string::npos) << error;
+}
+
+TEST(LaunchProfile, BadValuesAndUndefinedVariables) {
+  EXPECT_NE(error_of([&] { load_profile(write_profile("uavmot_p1.yaml", "processes:\n  - name: a\n    command: x\n    max_respawns: many\n")); })
+                .find("expected an integer"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { load_profile(write_profile("uavmot_p2.yaml", "processes: []\n")); }).find("needs a list"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { load_profile(write_profile("uavmot_p3.yaml", "processes:\n  - name: a\n    command: x\n  - name: a\n    command: y\n")); })
+                .find("duplicate"),
+            std::string::npos);
+  const auto p = load_profile(write_profile("uavmot_p4.yaml", "processes:\n  - name: a\n    command: x\n    args: [\"${nope}\"]\n"));
+  EXPECT_NE(error_of([&] { resolve(p, {}); }).find("'${nope}' is not defined"), std::string::npos);
+  EXPECT_THROW(load_profile("/nonexistent/profile.yaml"), InputError);
+}
+
+}  // namespace
+}  // namespace uavmot::launch

@@ -1,0 +1,189 @@
+// Benchmark of the motion layer against two baselines, on the same frames with exact ground truth:
+//   uavmot         MotionEstimator (feature re-use, grid detection, LK + FB, RANSAC + Ceres)
+//   uavmot-noceres the same without the Ceres refinement
+//   videostab      cv::videostab::KeypointBasedMotionEstimator + MotionEstimatorRansacL2 (homography)
+//   plain          goodFeaturesToTrack + calcOpticalFlowPyrLK + findHomography(RANSAC) per frame pair
+// Frames: real CLIF 2007 texture warped along a smooth camera path (components/motion/testing).
+// Prints a markdown table: per-frame time (median, mean, p90) and mean transfer error vs truth.
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <functional>
+#include <iostream>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <opencv2/calib3d.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+#include <opencv2/video/tracking.hpp>
+#include <opencv2/videostab/global_motion.hpp>
+
+#include "uavmot/core/error.hpp"
+#include "uavmot/motion/motion_estimator.hpp"
+#include "warped_sequence.hpp"
+
+namespace {
+
+using uavmot::Homography;
+
+struct Result {
+  std::string name;
+  std::vector<double> ms;
+  std::vector<double> error_px;  // per valid frame pair
+  int valid = 0;
+};
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  return v[static_cast<size_t>(std::min<double>(static_cast<double>(v.size()) - 1, q * static_cast<double>(v.size())))];
+}
+double mean(const std::vector<double>& v) {
+  return v.empty() ? 0.0 : std::accumulate(v.begin(), v.end(), 0.0) / static_cast<double>(v.size());
+}
+
+Homography from_mat(const cv::Mat& m) {
+  cv::Mat d;
+  m.convertTo(d, CV_64F);
+  Homography h(d.ptr<double>());
+  uavmot::normalize_homography(h);
+  return h;
+}
+
+// Runs `estimate(k)` for k = 2..frames (frame 1 is a warm-up call when `warm_up` is given).
+Result measure(const std::string& name, int frames, const uavmot::motion::testing::WarpedSequence& seq,
+               const std::function<bool(int, Homography&)>& estimate) {
+  Result r;
+  r.name = name;
+  const cv::Size size = seq.options().frame_size;
+  for (int k = 1; k <= frames; ++k) {
+    Homography h = Homography::eye();
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool ok = estimate(k, h);
+    const auto t1 = std::chrono::steady_clock::now();
+    if (k == 1) continue;  // no pair yet (uavmot's first call only detects)
+    r.ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    if (ok) {
+      ++r.valid;
+      r.error_px.push_back(uavmot::mean_transfer_error(h, seq.true_homography(k), size.width, size.height));
+    }
+  }
+  return r;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"Motion layer benchmark: uavmot vs OpenCV videostab vs plain KLT + findHomography"};
+  std::string clif = std::string(UAVMOT_SHARED_DATA_DIR) + "/clif2007/jpg";
+  int frames = 60, width = 1920, height = 1080, threads = 1, features = 1000;
+  double speed = 3.0, rotation = 0.05, noise = 1.0, zoom = 0.0005;
+  bool describe = false, only_uavmot = false;
+  app.add_option("--clif", clif, "folder with the CLIF 2007 jpg frames (texture)");
+  app.add_option("--frames", frames, "frames to process")->check(CLI::Range(3, 100000));
+  app.add_option("--width", width, "frame width")->check(CLI::Range(64, 10000));
+  app.add_option("--height", height, "frame height")->check(CLI::Range(64, 10000));
+  app.add_option("--speed", speed, "camera speed, px/frame");
+  app.add_option("--rotation", rotation, "camera rotation, deg/frame");
+  app.add_option("--zoom", zoom, "relative scale change per frame");
+  app.add_option("--noise", noise, "sensor noise sigma, grey levels");
+  app.add_option("--threads", threads, "OpenCV threads (cv::setNumThreads)")->check(CLI::Range(1, 64));
+  app.add_option("--baseline-features", features, "corners for the baselines (videostab default: 1000)");
+  app.add_flag("--only-uavmot", only_uavmot, "skip the no-Ceres variant and the baselines (for profiling)");
+  app.add_flag("--describe", describe, "print a one-line description");
+  CLI11_PARSE(app, argc, argv);
+  if (describe) {
+    std::cout << "benchmark the motion layer against OpenCV videostab and plain KLT\n";
+    return 0;
+  }
+  try {
+    cv::setNumThreads(threads);
+    uavmot::motion::testing::WarpedSequenceOptions o;
+    o.clif_folder = clif;
+    o.frame_size = cv::Size(width, height);
+    o.camera_speed_px = speed;
+    o.rotation_deg_per_frame = rotation;
+    o.zoom_per_frame = zoom;
+    o.noise_sigma = noise;
+    const uavmot::motion::testing::WarpedSequence seq(o);
+    std::vector<cv::Mat> images;
+    for (int k = 1; k <= frames; ++k) images.push_back(seq.frame(k));
+
+    std::vector<Result> results;
+    auto run_uavmot = [&](const std::string& name, bool refine) {
+      uavmot::motion::MotionOptions options;
+      options.refine = refine;
+      uavmot::motion::MotionEstimator estimator(options);
+      return measure(name, frames, seq, [&](int k, Homography& h) {
+        uavmot::Frame f;
+        f.index = k;
+        f.image = images[static_cast<size_t>(k - 1)];
+        const auto m = estimator.process(f);
+        h = m.homography;
+        return m.quality.valid;
+      });
+    };
+    results.push_back(run_uavmot("uavmot", true));
+    if (only_uavmot) {
+      const auto& r = results[0];
+      std::printf("uavmot: median %.2f ms, mean %.2f ms, error %.4f px\n", percentile(r.ms, 0.5), mean(r.ms),
+                  mean(r.error_px));
+      return 0;
+    }
+    results.push_back(run_uavmot("uavmot, no Ceres refinement", false));
+
+    {
+      using namespace cv::videostab;
+      auto ransac = cv::makePtr<MotionEstimatorRansacL2>(MM_HOMOGRAPHY);
+      KeypointBasedMotionEstimator estimator(ransac);
+      estimator.setDetector(cv::GFTTDetector::create(features));
+      results.push_back(measure("OpenCV videostab (KeypointBased + RansacL2)", frames, seq, [&](int k, Homography& h) {
+        if (k == 1) return false;
+        bool ok = false;
+        const cv::Mat m = estimator.estimate(images[static_cast<size_t>(k - 2)], images[static_cast<size_t>(k - 1)], &ok);
+        h = from_mat(m);
+        return ok;
+      }));
+    }
+    results.push_back(measure("plain GFTT + PyrLK + findHomography", frames, seq, [&](int k, Homography& h) {
+      if (k == 1) return false;
+      const cv::Mat& prev = images[static_cast<size_t>(k - 2)];
+      const cv::Mat& cur = images[static_cast<size_t>(k - 1)];
+      std::vector<cv::Point2f> p0, p1, a, b;
+      cv::goodFeaturesToTrack(prev, p0, features, 0.01, 8);
+      std::vector<unsigned char> status;
+      std::vector<float> err;
+      cv::calcOpticalFlowPyrLK(prev, cur, p0, p1, status, err, cv::Size(21, 21), 3);
+      for (size_t i = 0; i < p0.size(); ++i) {
+        if (status[i]) {
+          a.push_back(p0[i]);
+          b.push_back(p1[i]);
+        }
+      }
+      if (a.size() < 4) return false;
+      const cv::Mat m = cv::findHomography(a, b, cv::RANSAC, 3.0);
+      if (m.empty()) return false;
+      h = from_mat(m);
+      return true;
+    }));
+
+    std::printf("%dx%d, %d frames, camera %.1f px/frame, %.2f deg/frame, noise %.1f, cv threads %d\n\n", width,
+                height, frames, speed, rotation, noise, threads);
+    std::printf("| method | median ms | mean ms | p90 ms | valid pairs | mean transfer error px | p95 error px |\n");
+    std::printf("|---|---|---|---|---|---|---|\n");
+    for (const auto& r : results) {
+      std::printf("| %s | %.2f | %.2f | %.2f | %d/%zu | %.4f | %.4f |\n", r.name.c_str(), percentile(r.ms, 0.5),
+                  mean(r.ms), percentile(r.ms, 0.9), r.valid, r.ms.size(), mean(r.error_px),
+                  percentile(r.error_px, 0.95));
+    }
+    std::printf("\nspeed-up of uavmot (mean time): %.1fx vs videostab, %.1fx vs plain\n",
+                mean(results[2].ms) / mean(results[0].ms), mean(results[3].ms) / mean(results[0].ms));
+  } catch (const uavmot::InputError& e) {
+    std::cerr << "error: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}

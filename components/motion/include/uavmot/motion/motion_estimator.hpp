@@ -1,0 +1,43 @@
+#pragma once
+// The independent-motion layer (paper section II): KLT features tracked frame to frame,
+// the frame-to-frame homography (robust estimate refined with Ceres) and, for every feature,
+// its velocity relative to the compensated background with a moving/stationary decision.
+//
+//   uavmot::motion::MotionEstimator motion(options);
+//   for (const Frame& frame : frames) { MotionEstimate m = motion.process(frame); ... }
+//
+// Deterministic: the same frames give bit-identical estimates.
+
+#include <memory>
+
+#include "uavmot/core/chain_types.hpp"
+#include "uavmot/core/scene_info.hpp"
+#include "uavmot/motion/motion_options.hpp"
+
+namespace uavmot::motion {
+
+class MotionEstimator {
+ public:
+  // Throws uavmot::InputError for inconsistent options.
+  explicit MotionEstimator(MotionOptions options, SceneInfo scene = {});
+  ~MotionEstimator();
+  MotionEstimator(MotionEstimator&&) noexcept;
+  MotionEstimator& operator=(MotionEstimator&&) noexcept;
+
+  // Frames must be CV_8UC1 (mono8) or CV_8UC3 (bgr8); an empty image or another type throws
+  // uavmot::InputError. Degenerate content (blank, saturated, scene cut, huge motion, too few
+  // features) never throws: the estimate is flagged invalid with the identity homography, all
+  // features restart, and the following frames recover.
+  MotionEstimate process(const Frame& frame);
+
+  // Forgets all features and the previous frame (e.g. when a stream restarts).
+  void reset();
+
+  const MotionOptions& options() const;
+
+ private:
+  class Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace uavmot::motion

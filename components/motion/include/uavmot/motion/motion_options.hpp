@@ -1,0 +1,65 @@
+#pragma once
+// Every parameter of the independent-motion layer (paper section II), with the defaults
+// explained in docs/motion.md. Lengths are pixels of the processed frame.
+
+#include <string>
+
+#include "uavmot/core/yaml_config.hpp"
+
+namespace uavmot::motion {
+
+struct MotionOptions {
+  // --- Shi-Tomasi detection, only where coverage is missing -------------------------------
+  int max_features = 1000;          // cap on live features per frame
+  int cell_size_px = 48;            // detection grid: a cell is refilled when it holds too few features
+  int features_per_cell = 1;        // target features per grid cell
+  double min_distance_px = 10.0;    // no new corner closer than this to any live feature
+  int corner_block_size = 5;        // Shi-Tomasi neighbourhood (px)
+  double min_corner_response = 3e-4;  // absolute minimum eigenvalue (cv::cornerMinEigenVal units)
+  int border_px = 8;                // features this close to the image border are not used
+  int empty_cell_retry_frames = 4;  // a cell without any corner is searched again after this many frames
+
+  // --- Pyramidal Lucas-Kanade with forward-backward check ----------------------------------
+  int lk_window_px = 11;            // odd window side
+  int pyramid_levels = 3;           // levels above the full-resolution image (maxLevel)
+  int lk_max_iterations = 20;
+  double lk_epsilon_px = 0.01;      // stop when an update is smaller than this
+  int backward_levels = 0;          // pyramid levels for the backward check (starts at the answer)
+  double max_forward_backward_px = 0.5;
+  bool predict_with_previous_homography = true;  // initial flow from the last camera motion
+
+  // --- Frame-to-frame homography ----------------------------------------------------------
+  std::string robust_method = "ransac";  // "ransac" or "magsac" (cv::findHomography)
+  double ransac_threshold_px = 1.5;
+  int ransac_max_iterations = 2000;
+  double ransac_confidence = 0.995;
+  int min_inliers = 20;             // fewer: the frame is degenerate (flagged invalid)
+  double min_inlier_ratio = 0.4;    // of the tracked correspondences
+  double min_tracked_ratio = 0.2;   // of the previous frame's features that survived LK + check
+  double max_motion_fraction = 0.25;  // image corners may move at most this fraction of the diagonal
+  double max_scale_change = 0.2;    // |scale - 1| of the affine part
+  bool refine = true;               // Ceres refinement over the inliers
+  std::string refine_loss = "cauchy";  // "cauchy", "huber" or "none" (plain least squares)
+  double refine_loss_scale_px = 0.3;   // residual where the robust loss starts to bend
+  int refine_max_iterations = 15;
+  bool refine_exclude_moving = true;   // features classified moving do not enter the refinement
+
+  // --- Independent motion ----------------------------------------------------------------
+  int history_frames = 10;          // positions per feature used for the velocity fit
+  int min_track_frames = 4;         // a feature is classified once seen in this many frames
+  double position_sigma_px = 0.08;  // prior 1-sigma tracking noise of one position
+  double prior_weight = 4.0;        // degrees of freedom the prior noise counts for
+  double moving_sigma_factor = 4.0;    // moving when speed > factor * velocity_sigma ...
+  double min_moving_speed_px = 0.15;   // ... and > this (px/frame)
+  int confirm_frames = 2;           // consecutive significant frames to become moving (and to stop)
+  double release_ratio = 0.7;       // a moving feature stops below this fraction of the threshold
+};
+
+// Reads a `motion:` section; absent keys keep their defaults. Throws uavmot::InputError naming
+// the file, line and key for unknown keys, wrong types and out-of-range values.
+MotionOptions load_motion_options(const ConfigNode& node);
+
+// Throws uavmot::InputError when options contradict each other (e.g. an even LK window).
+void validate(const MotionOptions& options);
+
+}  // namespace uavmot::motion

@@ -1,0 +1,146 @@
+#include "grid_corner_detector.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+namespace uavmot::motion {
+namespace {
+
+struct Candidate {
+  float response;
+  int x;
+  int y;
+};
+
+// Points already placed, bucketed by grid cell for the min-distance test.
+class CellBuckets {
+ public:
+  CellBuckets(int cols, int rows, int cell, double min_distance)
+      : cols_(cols), rows_(rows), cell_(cell), min_distance2_(min_distance * min_distance),
+        reach_(static_cast<int>(std::ceil(min_distance / cell))), buckets_(static_cast<size_t>(cols * rows)) {}
+
+  int cell_of(const cv::Point2f& p) const {
+    const int cx = std::clamp(static_cast<int>(p.x) / cell_, 0, cols_ - 1);
+    const int cy = std::clamp(static_cast<int>(p.y) / cell_, 0, rows_ - 1);
+    return cy * cols_ + cx;
+  }
+  void add(const cv::Point2f& p) { buckets_[static_cast<size_t>(cell_of(p))].push_back(p); }
+  int count(int cell_index) const { return static_cast<int>(buckets_[static_cast<size_t>(cell_index)].size()); }
+
+  bool is_free(const cv::Point2f& p) const {
+    const int c = cell_of(p);
+    const int cx = c % cols_, cy = c / cols_;
+    for (int y = std::max(0, cy - reach_); y <= std::min(rows_ - 1, cy + reach_); ++y) {
+      for (int x = std::max(0, cx - reach_); x <= std::min(cols_ - 1, cx + reach_); ++x) {
+        for (const auto& q : buckets_[static_cast<size_t>(y * cols_ + x)]) {
+          const float dx = p.x - q.x, dy = p.y - q.y;
+          if (static_cast<double>(dx * dx + dy * dy) < min_distance2_) return false;
+        }
+      }
+    }
+    return true;
+  }
+
+ private:
+  int cols_, rows_, cell_;
+  double min_distance2_;
+  int reach_;
+  std::vector<std::vector<cv::Point2f>> buckets_;
+};
+
+// Local maxima of the minimum-eigenvalue map inside `cell` (image coordinates), strongest first.
+std::vector<Candidate> cell_candidates(const cv::Mat& gray, const cv::Rect& cell, const MotionOptions& o) {
+  const int pad = o.corner_block_size / 2 + 2;
+  const cv::Rect roi = cv::Rect(cell.x - pad, cell.y - pad, cell.width + 2 * pad, cell.height + 2 * pad) &
+                       cv::Rect(0, 0, gray.cols, gray.rows);
+  // A ROI of the full image: the filters read the real neighbours outside it, so responses equal
+  // a whole-image computation.
+  cv::Mat eig;
+  cv::cornerMinEigenVal(gray(roi), eig, o.corner_block_size, 3);
+  const auto threshold = static_cast<float>(o.min_corner_response);
+  std::vector<Candidate> out;
+  for (int y = cell.y; y < cell.y + cell.height; ++y) {
+    const int ry = y - roi.y;
+    if (ry < 1 || ry >= eig.rows - 1) continue;
+    const float* above = eig.ptr<float>(ry - 1);
+    const float* row = eig.ptr<float>(ry);
+    const float* below = eig.ptr<float>(ry + 1);
+    for (int x = cell.x; x < cell.x + cell.width; ++x) {
+      const int rx = x - roi.x;
+      if (rx < 1 || rx >= eig.cols - 1) continue;
+      const float v = row[rx];
+      if (v < threshold || v <= 0.0f) continue;
+      if (v < row[rx - 1] || v < row[rx + 1] || v < above[rx - 1] || v < above[rx] || v < above[rx + 1] ||
+          v < below[rx - 1] || v < below[rx] || v < below[rx + 1]) {
+        continue;
+      }
+      out.push_back({v, x, y});
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) {
+    if (a.response != b.response) return a.response > b.response;
+    if (a.y != b.y) return a.y < b.y;
+    return a.x < b.x;
+  });
+  return out;
+}
+
+}  // namespace
+
+// Shared by both entry points; `retry_at` (may be null) holds the empty-cell back-off.
+std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
+                                         const MotionOptions& o, std::vector<int64_t>* retry_at, int64_t call) {
+  std::vector<cv::Point2f> added;
+  int budget = o.max_features - static_cast<int>(existing.size());
+  if (budget <= 0 || gray.empty()) return added;
+  const int cell = o.cell_size_px;
+  const int cols = (gray.cols + cell - 1) / cell;
+  const int rows = (gray.rows + cell - 1) / cell;
+  CellBuckets buckets(cols, rows, cell, o.min_distance_px);
+  for (const auto& p : existing) buckets.add(p);
+
+  const cv::Rect usable(o.border_px, o.border_px, gray.cols - 2 * o.border_px, gray.rows - 2 * o.border_px);
+  if (usable.width <= 0 || usable.height <= 0) return added;
+  for (int cy = 0; cy < rows && budget > 0; ++cy) {
+    for (int cx = 0; cx < cols && budget > 0; ++cx) {
+      const int index = cy * cols + cx;
+      if (buckets.count(index) >= o.features_per_cell) continue;
+      if (retry_at && (*retry_at)[static_cast<size_t>(index)] > call) continue;
+      const cv::Rect area = cv::Rect(cx * cell, cy * cell, cell, cell) & usable;
+      if (area.width <= 0 || area.height <= 0) continue;
+      const auto candidates = cell_candidates(gray, area, o);
+      if (retry_at) {
+        (*retry_at)[static_cast<size_t>(index)] = candidates.empty() ? call + o.empty_cell_retry_frames : 0;
+      }
+      for (const auto& c : candidates) {
+        const cv::Point2f p(static_cast<float>(c.x), static_cast<float>(c.y));
+        if (!buckets.is_free(p)) continue;
+        buckets.add(p);
+        added.push_back(p);
+        --budget;
+        if (buckets.count(index) >= o.features_per_cell || budget <= 0) break;
+      }
+    }
+  }
+  return added;
+}
+
+std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
+                                                const MotionOptions& o) {
+  return detect_in_cells(gray, existing, o, nullptr, 0);
+}
+
+std::vector<cv::Point2f> GridCornerDetector::detect(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
+                                                    bool continuous) {
+  const int cell = options_.cell_size_px;
+  const size_t cells = static_cast<size_t>(((gray.cols + cell - 1) / cell) * ((gray.rows + cell - 1) / cell));
+  if (!continuous || gray.size() != size_ || retry_at_.size() != cells) {
+    size_ = gray.size();
+    retry_at_.assign(cells, 0);
+  }
+  return detect_in_cells(gray, existing, options_, &retry_at_, calls_++);
+}
+
+}  // namespace uavmot::motion

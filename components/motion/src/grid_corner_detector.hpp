@@ -1,0 +1,40 @@
+#pragma once
+// Shi-Tomasi corners, detected only in grid cells that hold too few live features, so a frame
+// with good coverage costs almost nothing and new texture entering the view is picked up.
+
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+#include <opencv2/core/types.hpp>
+
+#include "uavmot/motion/motion_options.hpp"
+
+namespace uavmot::motion {
+
+// New corners in `gray` (CV_8UC1): at least min_distance_px from every point of `existing` and
+// from each other, at most features_per_cell per cell counting `existing`, no more than
+// max_features in total, above min_corner_response. Deterministic order: cells row-major,
+// strongest corner first within a cell.
+std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
+                                                const MotionOptions& options);
+
+// The same, remembering cells that had no corner at all (flat ground, sky, a blank frame) and
+// searching them again only every `empty_cell_retry_frames` calls, so texture-less areas do not
+// cost a corner search every frame. With `continuous` false (first frame, after an invalid one)
+// every cell is searched and the back-off starts afresh: after a blank frame, the next frame
+// must be searched everywhere.
+class GridCornerDetector {
+ public:
+  explicit GridCornerDetector(const MotionOptions& options) : options_(options) {}
+  std::vector<cv::Point2f> detect(const cv::Mat& gray, const std::vector<cv::Point2f>& existing, bool continuous);
+  void reset() { retry_at_.clear(); }
+
+ private:
+  const MotionOptions& options_;
+  int64_t calls_ = 0;
+  cv::Size size_;
+  std::vector<int64_t> retry_at_;  // per cell: first call at which an empty cell is searched again
+};
+
+}  // namespace uavmot::motion

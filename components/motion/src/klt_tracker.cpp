@@ -1,0 +1,49 @@
+#include "klt_tracker.hpp"
+
+#include <opencv2/video/tracking.hpp>
+
+namespace uavmot::motion {
+
+Pyramid build_pyramid(const cv::Mat& gray, const MotionOptions& o) {
+  Pyramid pyramid;
+  pyramid.size = gray.size();
+  // Copies into a bordered buffer (tryReuseInputImage = false): the caller's frame buffer may be reused.
+  cv::buildOpticalFlowPyramid(gray, pyramid.levels, cv::Size(o.lk_window_px, o.lk_window_px), o.pyramid_levels,
+                              /*withDerivatives=*/true, cv::BORDER_REFLECT_101, cv::BORDER_CONSTANT,
+                              /*tryReuseInputImage=*/false);
+  return pyramid;
+}
+
+void track_features(const Pyramid& previous, const Pyramid& current, const std::vector<cv::Point2f>& from,
+                    const std::vector<cv::Point2f>& guess, const MotionOptions& o, std::vector<cv::Point2f>& to,
+                    std::vector<unsigned char>& tracked) {
+  tracked.assign(from.size(), 0);
+  to = guess;
+  if (from.empty()) return;
+  const cv::Size window(o.lk_window_px, o.lk_window_px);
+  const cv::TermCriteria criteria(cv::TermCriteria::COUNT | cv::TermCriteria::EPS, o.lk_max_iterations,
+                                  o.lk_epsilon_px);
+  std::vector<unsigned char> forward_ok, backward_ok;
+  std::vector<float> error;
+  cv::calcOpticalFlowPyrLK(previous.levels, current.levels, from, to, forward_ok, error, window, o.pyramid_levels,
+                           criteria, cv::OPTFLOW_USE_INITIAL_FLOW);
+  // Backward from the answer, starting at the original position: a consistent track needs no
+  // coarse levels to come back, so this costs a fraction of the forward pass.
+  std::vector<cv::Point2f> back = from;
+  cv::calcOpticalFlowPyrLK(current.levels, previous.levels, to, back, backward_ok, error, window, o.backward_levels,
+                           criteria, cv::OPTFLOW_USE_INITIAL_FLOW);
+  const float max_fb2 = static_cast<float>(o.max_forward_backward_px * o.max_forward_backward_px);
+  const float lo = static_cast<float>(o.border_px);
+  const float hi_x = static_cast<float>(current.size.width - 1 - o.border_px);
+  const float hi_y = static_cast<float>(current.size.height - 1 - o.border_px);
+  for (size_t i = 0; i < from.size(); ++i) {
+    if (!forward_ok[i] || !backward_ok[i]) continue;
+    const cv::Point2f d = back[i] - from[i];
+    if (!(d.x * d.x + d.y * d.y <= max_fb2)) continue;  // also rejects NaN
+    const cv::Point2f& p = to[i];
+    if (!(p.x >= lo && p.y >= lo && p.x <= hi_x && p.y <= hi_y)) continue;
+    tracked[i] = 1;
+  }
+}
+
+}  // namespace uavmot::motion

@@ -1,0 +1,30 @@
+#pragma once
+// Pyramidal Lucas-Kanade on pyramids built once per frame (with derivatives), so each frame's
+// pyramid serves as "next" for the forward track and as "previous" for the next frame and for
+// the backward check.
+
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+#include <opencv2/core/types.hpp>
+
+#include "uavmot/motion/motion_options.hpp"
+
+namespace uavmot::motion {
+
+struct Pyramid {
+  std::vector<cv::Mat> levels;  // cv::buildOpticalFlowPyramid layout (image, derivatives, ...)
+  cv::Size size;
+  bool empty() const { return levels.empty(); }
+};
+
+Pyramid build_pyramid(const cv::Mat& gray, const MotionOptions& options);
+
+// Tracks `from` (in `previous`) into `current`, starting at `guess`. `tracked[i]` is set where the
+// forward track converged, the backward track returns within max_forward_backward_px and the
+// result lies border_px inside the image.
+void track_features(const Pyramid& previous, const Pyramid& current, const std::vector<cv::Point2f>& from,
+                    const std::vector<cv::Point2f>& guess, const MotionOptions& options,
+                    std::vector<cv::Point2f>& to, std::vector<unsigned char>& tracked);
+
+}  // namespace uavmot::motion

@@ -1,0 +1,203 @@
+#include "uavmot/motion/motion_estimator.hpp"
+
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <opencv2/imgproc.hpp>
+
+#include "grid_corner_detector.hpp"
+#include "homography_estimation.hpp"
+#include "homography_refinement.hpp"
+#include "klt_tracker.hpp"
+#include "relative_velocity.hpp"
+
+namespace uavmot::motion {
+namespace {
+
+struct LiveFeature {
+  uint64_t id = 0;
+  cv::Point2f position;
+  uint32_t age = 0;  // frames seen, 1 when detected
+  FeatureHistory history;
+  VelocityEstimate velocity;
+  MotionClassifier classifier;
+};
+
+TrackedFeature to_output(const LiveFeature& f) {
+  TrackedFeature out;
+  out.id = f.id;
+  out.position = cv::Point2d(f.position.x, f.position.y);
+  out.velocity = f.velocity.velocity;
+  out.velocity_sigma = f.velocity.sigma;
+  out.age = f.age;
+  out.moving = f.classifier.moving();
+  return out;
+}
+
+}  // namespace
+
+class MotionEstimator::Impl {
+ public:
+  Impl(MotionOptions options, SceneInfo scene)
+      : options_(std::move(options)), scene_(scene), detector_(options_) {
+    validate(options_);
+  }
+
+  MotionEstimate process(const Frame& frame);
+  void reset() {
+    previous_ = Pyramid{};
+    features_.clear();
+    last_motion_ = Homography::eye();
+    last_valid_ = false;
+    detector_.reset();
+  }
+  const MotionOptions& options() const { return options_; }
+
+ private:
+  // Tracks the live features into `current`; returns whether the frame pair gave a valid
+  // homography (then the survivors replace features_).
+  bool track_and_estimate(const Pyramid& current, MotionEstimate& out);
+  void detect_new_features(const cv::Mat& gray, bool continuous);
+
+  MotionOptions options_;
+  SceneInfo scene_;
+  GridCornerDetector detector_;
+  Pyramid previous_;
+  std::vector<LiveFeature> features_;  // ordered by id
+  uint64_t next_id_ = 1;
+  Homography last_motion_ = Homography::eye();
+  bool last_valid_ = false;
+  cv::Mat gray_;
+};
+
+MotionEstimate MotionEstimator::Impl::process(const Frame& frame) {
+  const std::string where = "frame " + std::to_string(frame.index) + " of stream '" + frame.stream_id + "'";
+  if (frame.image.empty()) throw InputError(where + ": empty image");
+  if (frame.image.type() != CV_8UC1 && frame.image.type() != CV_8UC3) {
+    throw InputError(where + ": expected mono8 (CV_8UC1) or bgr8 (CV_8UC3), got OpenCV type " +
+                     std::to_string(frame.image.type()));
+  }
+  const int min_side = 2 * options_.border_px + options_.lk_window_px;
+  if (frame.image.cols < min_side || frame.image.rows < min_side) {
+    throw InputError(where + ": image " + std::to_string(frame.image.cols) + "x" + std::to_string(frame.image.rows) +
+                     " is smaller than " + std::to_string(min_side) + " px");
+  }
+  if (frame.image.type() == CV_8UC3) {
+    cv::cvtColor(frame.image, gray_, cv::COLOR_BGR2GRAY);
+  } else {
+    gray_ = frame.image;
+  }
+
+  MotionEstimate out;
+  out.stream_id = frame.stream_id;
+  out.frame_index = frame.index;
+  out.capture_time_ns = frame.capture_time_ns;
+  Pyramid current = build_pyramid(gray_, options_);
+
+  const bool valid = track_and_estimate(current, out);
+  if (!valid) features_.clear();  // nothing links this frame to the last: every feature restarts
+  last_valid_ = valid;
+  last_motion_ = valid ? out.homography : Homography::eye();
+
+  detect_new_features(gray_, valid);
+  previous_ = std::move(current);
+  gray_.release();  // never keep a reference to the caller's buffer
+
+  out.features.reserve(features_.size());
+  for (const auto& f : features_) out.features.push_back(to_output(f));
+  return out;
+}
+
+bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEstimate& out) {
+  if (previous_.empty() || previous_.size != current.size || features_.empty()) return false;
+  const MotionOptions& o = options_;
+  std::vector<cv::Point2f> from, guess, to;
+  from.reserve(features_.size());
+  for (const auto& f : features_) from.push_back(f.position);
+  if (o.predict_with_previous_homography && last_valid_) {
+    for (const auto& p : from) {
+      const cv::Point2d q = apply_homography(last_motion_, cv::Point2d(p));
+      guess.emplace_back(static_cast<float>(q.x), static_cast<float>(q.y));
+    }
+  } else {
+    guess = from;
+  }
+  std::vector<unsigned char> tracked;
+  track_features(previous_, current, from, guess, o, to, tracked);
+
+  std::vector<cv::Point2f> src, dst;
+  std::vector<size_t> index;  // into features_
+  for (size_t i = 0; i < features_.size(); ++i) {
+    if (!tracked[i]) continue;
+    src.push_back(from[i]);
+    dst.push_back(to[i]);
+    index.push_back(i);
+  }
+  if (static_cast<double>(src.size()) < o.min_tracked_ratio * static_cast<double>(features_.size())) return false;
+  const RobustHomography robust = estimate_robust_homography(src, dst, current.size, o);
+  if (!robust.ok) return false;
+
+  Homography h = robust.h;
+  if (o.refine) {
+    // Features already known to move are not background: keep them out of the refinement
+    // unless that leaves too few points.
+    std::vector<unsigned char> use = robust.inliers;
+    if (o.refine_exclude_moving) {
+      int kept = 0;
+      std::vector<unsigned char> background = use;
+      for (size_t k = 0; k < background.size(); ++k) {
+        if (background[k] && features_[index[k]].classifier.moving()) background[k] = 0;
+        kept += background[k];
+      }
+      if (kept >= o.min_inliers) use = std::move(background);
+    }
+    const Homography refined = refine_homography(h, src, dst, use, o);
+    if (plausible_motion(refined, current.size, o, nullptr)) h = refined;
+  }
+  out.homography = h;
+  out.quality.valid = true;
+  out.quality.inliers = static_cast<uint32_t>(robust.inlier_count);
+  out.quality.residual_px = rms_transfer_error(h, src, dst, robust.inliers);
+
+  std::vector<LiveFeature> survivors;
+  survivors.reserve(index.size());
+  for (size_t k = 0; k < index.size(); ++k) {
+    LiveFeature f = std::move(features_[index[k]]);
+    f.position = dst[k];
+    ++f.age;
+    f.history.carry_forward(h);
+    f.history.push(f.position, o.history_frames);
+    f.velocity = estimate_velocity(f.history, o);
+    f.classifier.update(f.velocity, static_cast<int>(f.age), o);
+    survivors.push_back(std::move(f));
+  }
+  features_ = std::move(survivors);
+  return true;
+}
+
+void MotionEstimator::Impl::detect_new_features(const cv::Mat& gray, bool continuous) {
+  std::vector<cv::Point2f> existing;
+  existing.reserve(features_.size());
+  for (const auto& f : features_) existing.push_back(f.position);
+  for (const auto& p : detector_.detect(gray, existing, continuous)) {
+    LiveFeature f;
+    f.id = next_id_++;
+    f.position = p;
+    f.age = 1;
+    f.history.push(p, options_.history_frames);
+    features_.push_back(std::move(f));
+  }
+}
+
+MotionEstimator::MotionEstimator(MotionOptions options, SceneInfo scene)
+    : impl_(std::make_unique<Impl>(std::move(options), scene)) {}
+MotionEstimator::~MotionEstimator() = default;
+MotionEstimator::MotionEstimator(MotionEstimator&&) noexcept = default;
+MotionEstimator& MotionEstimator::operator=(MotionEstimator&&) noexcept = default;
+
+MotionEstimate MotionEstimator::process(const Frame& frame) { return impl_->process(frame); }
+void MotionEstimator::reset() { impl_->reset(); }
+const MotionOptions& MotionEstimator::options() const { return impl_->options(); }
+
+}  // namespace uavmot::motion

@@ -1,0 +1,112 @@
+#include "uavmot/motion/motion_options.hpp"
+
+#include <string>
+
+namespace uavmot::motion {
+
+MotionOptions load_motion_options(const ConfigNode& node) {
+  MotionOptions o;
+  node.expect_only({"max_features", "cell_size_px", "features_per_cell", "min_distance_px", "corner_block_size",
+                    "min_corner_response", "border_px", "empty_cell_retry_frames", "lk_window_px", "pyramid_levels", "lk_max_iterations",
+                    "lk_epsilon_px", "backward_levels", "max_forward_backward_px",
+                    "predict_with_previous_homography", "robust_method", "ransac_threshold_px",
+                    "ransac_max_iterations", "ransac_confidence", "min_inliers", "min_inlier_ratio",
+                    "min_tracked_ratio", "max_motion_fraction", "max_scale_change", "refine", "refine_loss",
+                    "refine_loss_scale_px", "refine_max_iterations", "refine_exclude_moving", "history_frames",
+                    "min_track_frames", "position_sigma_px", "prior_weight", "moving_sigma_factor",
+                    "min_moving_speed_px", "confirm_frames", "release_ratio"});
+  node.read("max_features", o.max_features, 10, 100000);
+  node.read("cell_size_px", o.cell_size_px, 8, 1024);
+  node.read("features_per_cell", o.features_per_cell, 1, 64);
+  node.read("min_distance_px", o.min_distance_px, 1.0, 256.0);
+  node.read("corner_block_size", o.corner_block_size, 3, 15);
+  node.read("min_corner_response", o.min_corner_response, 0.0, 1.0);
+  node.read("border_px", o.border_px, 0, 256);
+  node.read("empty_cell_retry_frames", o.empty_cell_retry_frames, 1, 1000);
+  node.read("lk_window_px", o.lk_window_px, 5, 63);
+  node.read("pyramid_levels", o.pyramid_levels, 0, 6);
+  node.read("lk_max_iterations", o.lk_max_iterations, 1, 200);
+  node.read("lk_epsilon_px", o.lk_epsilon_px, 1e-5, 1.0);
+  node.read("backward_levels", o.backward_levels, 0, 6);
+  node.read("max_forward_backward_px", o.max_forward_backward_px, 0.01, 10.0);
+  node.read("predict_with_previous_homography", o.predict_with_previous_homography);
+  node.read_choice("robust_method", o.robust_method, {"ransac", "magsac"});
+  node.read("ransac_threshold_px", o.ransac_threshold_px, 0.1, 50.0);
+  node.read("ransac_max_iterations", o.ransac_max_iterations, 10, 100000);
+  node.read("ransac_confidence", o.ransac_confidence, 0.5, 0.999999);
+  node.read("min_inliers", o.min_inliers, 4, 100000);
+  node.read("min_inlier_ratio", o.min_inlier_ratio, 0.0, 1.0);
+  node.read("min_tracked_ratio", o.min_tracked_ratio, 0.0, 1.0);
+  node.read("max_motion_fraction", o.max_motion_fraction, 0.001, 2.0);
+  node.read("max_scale_change", o.max_scale_change, 0.001, 0.9);
+  node.read("refine", o.refine);
+  node.read_choice("refine_loss", o.refine_loss, {"cauchy", "huber", "none"});
+  node.read("refine_loss_scale_px", o.refine_loss_scale_px, 1e-3, 100.0);
+  node.read("refine_max_iterations", o.refine_max_iterations, 1, 1000);
+  node.read("refine_exclude_moving", o.refine_exclude_moving);
+  node.read("history_frames", o.history_frames, 2, 200);
+  node.read("min_track_frames", o.min_track_frames, 2, 200);
+  node.read("position_sigma_px", o.position_sigma_px, 1e-4, 10.0);
+  node.read("prior_weight", o.prior_weight, 0.0, 1000.0);
+  node.read("moving_sigma_factor", o.moving_sigma_factor, 0.0, 100.0);
+  node.read("min_moving_speed_px", o.min_moving_speed_px, 0.0, 1000.0);
+  node.read("confirm_frames", o.confirm_frames, 1, 100);
+  node.read("release_ratio", o.release_ratio, 0.0, 1.0);
+  if (o.lk_window_px % 2 == 0) node.fail("lk_window_px", "must be odd, got " + std::to_string(o.lk_window_px));
+  if (o.corner_block_size % 2 == 0) {
+    node.fail("corner_block_size", "must be odd, got " + std::to_string(o.corner_block_size));
+  }
+  if (o.min_track_frames > o.history_frames) {
+    node.fail("min_track_frames", "must not exceed history_frames (" + std::to_string(o.history_frames) + ")");
+  }
+  if (o.backward_levels > o.pyramid_levels) {
+    node.fail("backward_levels", "must not exceed pyramid_levels (" + std::to_string(o.pyramid_levels) + ")");
+  }
+  return o;
+}
+
+namespace {
+void require(bool ok, const std::string& message) {
+  if (!ok) throw InputError("motion options: " + message);
+}
+}  // namespace
+
+void validate(const MotionOptions& o) {
+  require(o.max_features >= 10, "max_features must be >= 10");
+  require(o.cell_size_px >= 8, "cell_size_px must be >= 8");
+  require(o.features_per_cell >= 1, "features_per_cell must be >= 1");
+  require(o.min_distance_px >= 1.0, "min_distance_px must be >= 1");
+  require(o.corner_block_size >= 3 && o.corner_block_size % 2 == 1, "corner_block_size must be odd and >= 3");
+  require(o.min_corner_response >= 0.0, "min_corner_response must be >= 0");
+  require(o.border_px >= 0, "border_px must be >= 0");
+  require(o.empty_cell_retry_frames >= 1, "empty_cell_retry_frames must be >= 1");
+  require(o.lk_window_px >= 5 && o.lk_window_px % 2 == 1, "lk_window_px must be odd and >= 5");
+  require(o.pyramid_levels >= 0 && o.pyramid_levels <= 6, "pyramid_levels must be in [0, 6]");
+  require(o.backward_levels >= 0 && o.backward_levels <= o.pyramid_levels,
+          "backward_levels must be in [0, pyramid_levels]");
+  require(o.lk_max_iterations >= 1 && o.lk_epsilon_px > 0.0, "LK stopping criteria must be positive");
+  require(o.max_forward_backward_px > 0.0, "max_forward_backward_px must be > 0");
+  require(o.robust_method == "ransac" || o.robust_method == "magsac", "robust_method must be ransac or magsac");
+  require(o.ransac_threshold_px > 0.0, "ransac_threshold_px must be > 0");
+  require(o.ransac_max_iterations >= 10, "ransac_max_iterations must be >= 10");
+  require(o.ransac_confidence > 0.0 && o.ransac_confidence < 1.0, "ransac_confidence must be in (0, 1)");
+  require(o.min_inliers >= 4, "min_inliers must be >= 4 (a homography needs 4 points)");
+  require(o.min_inlier_ratio >= 0.0 && o.min_inlier_ratio <= 1.0, "min_inlier_ratio must be in [0, 1]");
+  require(o.min_tracked_ratio >= 0.0 && o.min_tracked_ratio <= 1.0, "min_tracked_ratio must be in [0, 1]");
+  require(o.max_motion_fraction > 0.0, "max_motion_fraction must be > 0");
+  require(o.max_scale_change > 0.0 && o.max_scale_change < 1.0, "max_scale_change must be in (0, 1)");
+  require(o.refine_loss == "cauchy" || o.refine_loss == "huber" || o.refine_loss == "none",
+          "refine_loss must be cauchy, huber or none");
+  require(o.refine_loss_scale_px > 0.0, "refine_loss_scale_px must be > 0");
+  require(o.refine_max_iterations >= 1, "refine_max_iterations must be >= 1");
+  require(o.history_frames >= 2, "history_frames must be >= 2");
+  require(o.min_track_frames >= 2 && o.min_track_frames <= o.history_frames,
+          "min_track_frames must be in [2, history_frames]");
+  require(o.position_sigma_px > 0.0, "position_sigma_px must be > 0");
+  require(o.prior_weight >= 0.0, "prior_weight must be >= 0");
+  require(o.moving_sigma_factor >= 0.0 && o.min_moving_speed_px >= 0.0, "moving thresholds must be >= 0");
+  require(o.confirm_frames >= 1, "confirm_frames must be >= 1");
+  require(o.release_ratio >= 0.0 && o.release_ratio <= 1.0, "release_ratio must be in [0, 1]");
+}
+
+}  // namespace uavmot::motion

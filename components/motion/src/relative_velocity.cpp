@@ -1,0 +1,73 @@
+#include "relative_velocity.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace uavmot::motion {
+
+void FeatureHistory::carry_forward(const Homography& h) {
+  for (auto& p : positions_) p = apply_homography(h, p);
+}
+
+void FeatureHistory::push(const cv::Point2f& position, int capacity) {
+  positions_.emplace_back(position.x, position.y);
+  while (static_cast<int>(positions_.size()) > capacity) positions_.pop_front();
+}
+
+VelocityEstimate estimate_velocity(const FeatureHistory& history, const MotionOptions& o) {
+  VelocityEstimate out;
+  const auto& pos = history.positions();
+  const int n = static_cast<int>(pos.size());
+  if (n < 2) return out;
+  // Time t = 0 .. n-1 (oldest .. current); slope of the least-squares line per axis.
+  const double t_mean = (n - 1) / 2.0;
+  double mx = 0, my = 0;
+  for (const auto& p : pos) {
+    mx += p.x;
+    my += p.y;
+  }
+  mx /= n;
+  my /= n;
+  double stt = 0, stx = 0, sty = 0;
+  for (int i = 0; i < n; ++i) {
+    const double dt = i - t_mean;
+    stt += dt * dt;
+    stx += dt * (pos[static_cast<size_t>(i)].x - mx);
+    sty += dt * (pos[static_cast<size_t>(i)].y - my);
+  }
+  out.velocity = {stx / stt, sty / stt};
+  // Residual variance per axis (2 dof per axis used by the line), pooled over both axes and
+  // shrunk towards the prior tracking noise so a short or lucky track is not over-trusted.
+  double rss = 0;
+  for (int i = 0; i < n; ++i) {
+    const double dt = i - t_mean;
+    const double ex = pos[static_cast<size_t>(i)].x - (mx + out.velocity[0] * dt);
+    const double ey = pos[static_cast<size_t>(i)].y - (my + out.velocity[1] * dt);
+    rss += ex * ex + ey * ey;
+  }
+  const double dof = 2.0 * std::max(0, n - 2);
+  const double prior_var = o.position_sigma_px * o.position_sigma_px;
+  const double var = (rss + o.prior_weight * prior_var) / std::max(dof + o.prior_weight, 1e-9);
+  out.sigma = std::sqrt(std::max(var, prior_var * 0.25) / stt);
+  out.available = true;
+  return out;
+}
+
+bool MotionClassifier::update(const VelocityEstimate& e, int track_frames, const MotionOptions& o) {
+  if (!e.available || track_frames < o.min_track_frames) {
+    moving_ = false;
+    streak_ = 0;
+    return moving_;
+  }
+  const double speed = std::hypot(e.velocity[0], e.velocity[1]);
+  const double threshold = std::max(o.moving_sigma_factor * e.sigma, o.min_moving_speed_px);
+  const bool argues_for_change = moving_ ? speed < o.release_ratio * threshold : speed > threshold;
+  streak_ = argues_for_change ? streak_ + 1 : 0;
+  if (streak_ >= o.confirm_frames) {
+    moving_ = !moving_;
+    streak_ = 0;
+  }
+  return moving_;
+}
+
+}  // namespace uavmot::motion

@@ -1,0 +1,55 @@
+#pragma once
+// Velocity of a feature relative to the compensated background, from its track history.
+//
+// Each feature keeps its recent positions mapped into the CURRENT frame through the chain of
+// frame-to-frame homographies. A background point then sits still (all positions coincide);
+// an independently moving one lies on a line whose slope is its velocity in px/frame. A least
+// squares line fit over the window gives the velocity, and its residual, shrunk towards a prior
+// tracking noise, gives the 1-sigma noise of that velocity.
+
+#include <deque>
+
+#include <opencv2/core/matx.hpp>
+#include <opencv2/core/types.hpp>
+
+#include "uavmot/core/homography.hpp"
+#include "uavmot/motion/motion_options.hpp"
+
+namespace uavmot::motion {
+
+struct VelocityEstimate {
+  cv::Vec2d velocity{0.0, 0.0};  // px/frame in the current frame
+  double sigma = 0.0;            // 1-sigma of each velocity component (px/frame)
+  bool available = false;        // false with fewer than 2 positions
+};
+
+class FeatureHistory {
+ public:
+  // Maps every stored position through `h` (previous frame -> current frame).
+  void carry_forward(const Homography& h);
+  // Appends the current position, keeping at most `capacity` positions.
+  void push(const cv::Point2f& position, int capacity);
+  int size() const { return static_cast<int>(positions_.size()); }
+  const std::deque<cv::Point2d>& positions() const { return positions_; }
+
+ private:
+  std::deque<cv::Point2d> positions_;  // oldest first, the last is the current position
+};
+
+VelocityEstimate estimate_velocity(const FeatureHistory& history, const MotionOptions& options);
+
+// Moving/stationary decision with hysteresis: a feature becomes moving after confirm_frames
+// consecutive frames with a significant speed (> max(moving_sigma_factor * sigma,
+// min_moving_speed_px)) and stops after confirm_frames consecutive frames below release_ratio
+// times that threshold. Features seen in fewer than min_track_frames frames are stationary.
+class MotionClassifier {
+ public:
+  bool update(const VelocityEstimate& estimate, int track_frames, const MotionOptions& options);
+  bool moving() const { return moving_; }
+
+ private:
+  bool moving_ = false;
+  int streak_ = 0;  // consecutive frames arguing for a change of state
+};
+
+}  // namespace uavmot::motion

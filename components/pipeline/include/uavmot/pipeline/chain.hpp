@@ -1,0 +1,49 @@
+#pragma once
+// The whole chain in one process: motion -> segmentation -> tracking, called in the same order
+// and with the same data as the distributed chain, so both give the same tracks (paper Fig. 1).
+
+#include <memory>
+#include <string>
+
+#include "uavmot/core/chain_types.hpp"
+#include "uavmot/core/scene_info.hpp"
+#include "uavmot/core/yaml_config.hpp"
+#include "uavmot/motion/motion_options.hpp"
+#include "uavmot/segmentation/segmentation_options.hpp"
+#include "uavmot/tracking/tracker_options.hpp"
+
+namespace uavmot::pipeline {
+
+struct ChainOptions {
+  SceneInfo scene;
+  motion::MotionOptions motion;
+  segmentation::SegmentationOptions segmentation;
+  tracking::TrackerOptions tracking;
+};
+
+// Reads a chain configuration (sections scene, motion, segmentation, tracking; all optional).
+// Throws InputError naming the file, line and key of anything invalid.
+ChainOptions load_chain_options(const std::string& file);
+ChainOptions load_chain_options(const ConfigNode& root);
+
+struct ChainOutput {
+  MotionEstimate motion;
+  SegmentationResult segmentation;
+  TrackList tracks;
+};
+
+class Chain {
+ public:
+  explicit Chain(const ChainOptions& options);
+  ~Chain();
+  Chain(const Chain&) = delete;
+  Chain& operator=(const Chain&) = delete;
+
+  ChainOutput process(const Frame& frame);
+
+ private:
+  struct Layers;
+  std::unique_ptr<Layers> layers_;
+};
+
+}  // namespace uavmot::pipeline

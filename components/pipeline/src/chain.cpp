@@ -1,0 +1,40 @@
+#include "uavmot/pipeline/chain.hpp"
+
+#include "uavmot/motion/motion_estimator.hpp"
+#include "uavmot/segmentation/segmenter.hpp"
+#include "uavmot/tracking/tracker.hpp"
+
+namespace uavmot::pipeline {
+
+ChainOptions load_chain_options(const std::string& file) { return load_chain_options(ConfigNode::load_file(file)); }
+
+ChainOptions load_chain_options(const ConfigNode& root) {
+  root.expect_only({"scene", "motion", "segmentation", "tracking"});
+  ChainOptions options;
+  if (root.has("scene")) options.scene = load_scene_info(root.child("scene"));
+  if (root.has("motion")) options.motion = motion::load_motion_options(root.child("motion"));
+  if (root.has("segmentation")) options.segmentation = segmentation::load_segmentation_options(root.child("segmentation"));
+  if (root.has("tracking")) options.tracking = tracking::load_tracker_options(root.child("tracking"));
+  return options;
+}
+
+struct Chain::Layers {
+  explicit Layers(const ChainOptions& o)
+      : motion(o.motion, o.scene), segmenter(o.segmentation, o.scene), tracker(o.tracking, o.scene) {}
+  motion::MotionEstimator motion;
+  segmentation::Segmenter segmenter;
+  tracking::Tracker tracker;
+};
+
+Chain::Chain(const ChainOptions& options) : layers_(std::make_unique<Layers>(options)) {}
+Chain::~Chain() = default;
+
+ChainOutput Chain::process(const Frame& frame) {
+  ChainOutput out;
+  out.motion = layers_->motion.process(frame);
+  out.segmentation = layers_->segmenter.process(frame, out.motion);
+  out.tracks = layers_->tracker.process(out.motion, out.segmentation);
+  return out;
+}
+
+}  // namespace uavmot::pipeline

@@ -1,0 +1,116 @@
+#pragma once
+// Parameters of the object segmentation layer (paper section III). Lengths that describe the
+// scene are in metres and converted with SceneInfo's GSD; filter scales are in pixels because
+// they describe image structure (edge width), not object size.
+
+#include <vector>
+
+#include "uavmot/core/chain_types.hpp"
+#include "uavmot/core/yaml_config.hpp"
+
+namespace uavmot::segmentation {
+
+// Local feature clustering (paper III-A): single linkage over position and relative velocity.
+struct ClusteringOptions {
+  // Two moving features are linked when they are at most this far apart (metres on the ground)
+  // AND their velocities differ by at most the speed threshold below. Single linkage chains
+  // links, so a car's features only need to be linked pairwise through their neighbours.
+  double link_distance_m = 3.0;
+  // Largest relative velocity difference (m/s) of linked features. It is raised to
+  // `velocity_sigma_factor` times the combined 1-sigma velocity noise of the pair when that is
+  // larger, so noisy sub-pixel velocities do not shatter one car into several clusters.
+  double link_speed_difference_mps = 2.5;
+  double velocity_sigma_factor = 3.0;
+  // Clusters with fewer moving features are dropped (isolated features are mostly noise).
+  int min_features = 2;
+};
+
+// The three gradient segmentations (paper III-B); each writes its own accumulator.
+struct GradientOptions {
+  // Korn gradient: Gaussian-derivative filters normalised to a unit step response of 1, one
+  // per scale; the accumulator is the sum of the magnitudes over these sigmas (px).
+  std::vector<double> korn_sigmas_px = {0.7, 1.0, 1.4};
+  // Morphological gradient, eq. (1): sum over square structuring elements of these side
+  // lengths (odd, px) of dilation minus erosion. Default is the single 3 x 3 element: with
+  // {3, 5} the 5 x 5 term widens the band by a pixel on each side, which bridges the ~4 px gap
+  // between cars driving side by side at the paper's scale (docs/segmentation.md has figures).
+  std::vector<int> morphological_sizes_px = {3};
+  // LBP gradient, eq. (2): riu2 patterns with this many neighbours on circles of these radii
+  // (px); accepted texture primitives add the neighbours' standard deviation.
+  int lbp_neighbours = 8;
+  std::vector<double> lbp_radii_px = {1.0, 2.0};
+  // Neighbourhoods whose standard deviation (grey levels) is below this are flat/noise and
+  // never texture primitives.
+  double lbp_min_stddev = 4.0;
+};
+
+enum class FusionRule { Sum, Product };
+
+// How a blob becomes an oriented box. MinAreaRect: cv::minAreaRect of the blob's outline, grown
+// by one pixel (pixel centres -> pixel extent); exact for axis-aligned blobs but, on a rotated
+// object, the staircase of the pixel grid makes it about a pixel too large per dimension.
+// Moments: the rectangle with the filled blob's centroid, principal axes and second moments;
+// unbiased at any angle and less pulled by a stray pixel on the outline.
+enum class BoxFit { Moments, MinAreaRect };
+
+// Spatial fusion, thresholding and blob -> region conversion (paper III-B/C).
+struct RegionOptions {
+  // The image window around a cluster is its box's bounds plus this margin (metres).
+  double window_margin_m = 2.0;
+  // Accumulators are mapped to [0, 255] by dividing by their window maximum, but never by less
+  // than the response to a step edge of this contrast (grey levels): a window that holds only
+  // noise stays dark instead of being stretched to full scale.
+  double min_edge_contrast = 12.0;
+  // Sum (paper default) or pixelwise product of the normalised accumulators (method=fusion).
+  FusionRule fusion_rule = FusionRule::Sum;
+  // Adaptive threshold: the `threshold_quantile` quantile of the window's accumulator values,
+  // but at least `threshold_min_fraction` of the accumulator's full scale.
+  double threshold_quantile = 0.8;
+  double threshold_min_fraction = 0.5;
+  // Pixel connectivity of the connected components: 4, 8, or 0 = by method: 8 for lbp (its
+  // accumulator is sparse, accepted pixels often touch only diagonally) and 4 for the dense
+  // korn, morphological and fusion accumulators (8 would leak across the thin diagonal gap
+  // between two cars driving side by side at an oblique angle).
+  int connectivity = 0;
+  // Side (px, odd) of the square element used to close each connected component on its own
+  // (components are labelled first, so closing never joins two of them).
+  int closing_size_px = 3;
+  BoxFit box_fit = BoxFit::Moments;
+  // A gradient blob is the object's outline thickened by the filters: its box is shrunk by
+  // this much (px) on every side to return the object's own extent.
+  double edge_band_px = 1.0;
+  // Plausible region sizes, as multiples of the expected vehicle length / width.
+  double min_length_factor = 0.4;
+  double max_length_factor = 3.0;
+  double min_width_factor = 0.3;
+  double max_width_factor = 3.0;
+  // A blob is kept only when at least `min_supporting_features` of its cluster's features lie
+  // inside its box grown by `support_margin_px`.
+  int min_supporting_features = 1;
+  double support_margin_px = 1.5;
+  // When no blob of a cluster is plausible and supported, return the cluster's box instead
+  // (marked method=clustering) so that a low-contrast object is not lost; likewise, when at
+  // least max(2, min_features) of a cluster's features lie in no kept region, add the box
+  // around those features (a second car whose blob was rejected).
+  bool fallback_to_cluster_box = true;
+  // A region whose box is covered by an earlier region's box for more than this fraction of
+  // its area is a duplicate (nested blob, or the same blob seen from two cluster windows).
+  double duplicate_overlap = 0.5;
+};
+
+struct SegmentationOptions {
+  // clustering | korn | morphological | lbp | fusion: the rows of the paper's Tables I and II.
+  SegmentationMethod method = SegmentationMethod::Fusion;
+  ClusteringOptions clustering;
+  GradientOptions gradients;
+  RegionOptions regions;
+};
+
+// Throws InvalidArgument naming the field when a value is out of its domain.
+void validate(const SegmentationOptions& options);
+
+// Reads a `segmentation:` section (flat keys, the field names above; `method` and
+// `fusion_rule` as strings). Unknown keys and out-of-range values throw InputError.
+SegmentationOptions load_segmentation_options(const ConfigNode& node);
+
+}  // namespace uavmot::segmentation

@@ -1,0 +1,267 @@
+#include "uavmot/segmentation/segmenter.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+
+#include <opencv2/imgproc.hpp>
+
+#include "uavmot/core/error.hpp"
+#include "uavmot/segmentation/blob_regions.hpp"
+#include "uavmot/segmentation/gradients.hpp"
+
+namespace uavmot::segmentation {
+namespace {
+
+void validate_scene(const SceneInfo& s) {
+  auto positive = [](double v) { return std::isfinite(v) && v > 0.0; };
+  if (!positive(s.gsd_m) || !positive(s.fps) || !positive(s.vehicle_length_m) || !positive(s.vehicle_width_m)) {
+    throw InvalidArgument("segmentation: scene gsd_m, fps, vehicle_length_m and vehicle_width_m must be positive");
+  }
+}
+
+// Peak of an accumulator over a vertical step of `contrast` grey levels.
+template <typename Gradient>
+double step_response(double contrast, Gradient gradient) {
+  cv::Mat step(32, 32, CV_8U, cv::Scalar(0));
+  step(cv::Rect(16, 0, 16, 32)).setTo(cv::Scalar(std::clamp(std::round(contrast), 1.0, 255.0)));
+  double peak = 0.0;
+  cv::minMaxLoc(gradient(step), nullptr, &peak);
+  return peak > 0.0 ? peak : 1.0;
+}
+
+bool crop_usable(const ImageCrop& crop) {
+  return !crop.pixels.empty() && (crop.pixels.type() == CV_8UC1 || crop.pixels.type() == CV_8UC3) &&
+         crop.pixels.cols == crop.roi.width && crop.pixels.rows == crop.roi.height;
+}
+
+Region cluster_region(const FeatureCluster& cluster) {
+  Region region;
+  region.box = cluster.box;
+  region.method = SegmentationMethod::Clustering;
+  region.score = 1.0;
+  region.cluster_id = static_cast<int32_t>(cluster.id);
+  return region;
+}
+
+// Fraction of `candidate`'s area covered by `kept`.
+double covered_fraction(const OrientedBox& candidate, const OrientedBox& kept) {
+  const double area = box_area(candidate);
+  return area > 0.0 ? intersection_area(candidate, kept) / area : 1.0;
+}
+
+}  // namespace
+
+std::optional<Region> Segmenter::uncovered_features_region(const FeatureCluster& cluster,
+                                                           const std::vector<cv::Point2d>& feature_positions,
+                                                           const std::vector<Region>& regions) const {
+  std::vector<cv::Point2d> uncovered;
+  for (const auto& p : feature_positions) {
+    const bool covered = std::any_of(regions.begin(), regions.end(), [&](const Region& r) {
+      OrientedBox grown = r.box;
+      grown.length += 2.0 * options_.regions.support_margin_px;
+      grown.width += 2.0 * options_.regions.support_margin_px;
+      return box_contains(grown, p);
+    });
+    if (!covered) uncovered.push_back(p);
+  }
+  if (static_cast<int>(uncovered.size()) < std::max(2, options_.clustering.min_features)) return std::nullopt;
+  Region region = cluster_region(cluster);
+  region.box = box_around_features(uncovered, cluster.velocity, scene_.metres_to_px(scene_.vehicle_length_m),
+                                   scene_.metres_to_px(scene_.vehicle_width_m));
+  region.score = static_cast<double>(uncovered.size()) / static_cast<double>(feature_positions.size());
+  return region;
+}
+
+SegmentationInput make_segmentation_input(const Frame& frame, const std::vector<cv::Rect>& rois) {
+  SegmentationInput input;
+  input.stream_id = frame.stream_id;
+  input.frame_index = frame.index;
+  input.capture_time_ns = frame.capture_time_ns;
+  input.image_size = frame.image.size();
+  const cv::Rect image(0, 0, frame.image.cols, frame.image.rows);
+  for (const cv::Rect& roi : rois) {
+    const cv::Rect clipped = roi & image;
+    if (clipped.empty()) continue;
+    input.crops.push_back({clipped, frame.image(clipped)});
+  }
+  return input;
+}
+
+Segmenter::Segmenter(SegmentationOptions options, SceneInfo scene) : options_(std::move(options)), scene_(scene) {
+  validate(options_);
+  validate_scene(scene_);
+  const auto& g = options_.gradients;
+  const double contrast = options_.regions.min_edge_contrast;
+  korn_reference_ = step_response(contrast, [&](const cv::Mat& m) { return korn_gradient(m, g.korn_sigmas_px); });
+  morphological_reference_ =
+      step_response(contrast, [&](const cv::Mat& m) { return morphological_gradient(m, g.morphological_sizes_px); });
+  lbp_reference_ = step_response(contrast, [&](const cv::Mat& m) {
+    return lbp_gradient(m, g.lbp_neighbours, g.lbp_radii_px, g.lbp_min_stddev);
+  });
+}
+
+std::vector<FeatureCluster> Segmenter::cluster(const MotionEstimate& motion, cv::Size image_size,
+                                               ClusteringStats* stats) const {
+  return cluster_moving_features(motion.features, options_.clustering, scene_, image_size, stats);
+}
+
+cv::Rect Segmenter::window_of(const FeatureCluster& cluster, cv::Size image_size) const {
+  const cv::Rect2d bounds = axis_aligned_bounds(cluster.box);
+  const double margin = scene_.metres_to_px(options_.regions.window_margin_m);
+  // Pixel i covers [i - 0.5, i + 0.5): the window holds every pixel touching the grown bounds.
+  const int x0 = static_cast<int>(std::floor(bounds.x - margin + 0.5));
+  const int y0 = static_cast<int>(std::floor(bounds.y - margin + 0.5));
+  const int x1 = static_cast<int>(std::ceil(bounds.x + bounds.width + margin - 0.5));
+  const int y1 = static_cast<int>(std::ceil(bounds.y + bounds.height + margin - 0.5));
+  return cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1) & cv::Rect(0, 0, image_size.width, image_size.height);
+}
+
+std::vector<cv::Rect> Segmenter::required_crops(const MotionEstimate& motion, cv::Size image_size) const {
+  std::vector<cv::Rect> rois;
+  if (options_.method == SegmentationMethod::Clustering) return rois;
+  for (const auto& c : cluster(motion, image_size, nullptr)) {
+    const cv::Rect window = window_of(c, image_size);
+    if (!window.empty()) rois.push_back(window);
+  }
+  return rois;
+}
+
+cv::Mat Segmenter::accumulator(const cv::Mat& gray) const {
+  const auto& g = options_.gradients;
+  switch (options_.method) {
+    case SegmentationMethod::Korn:
+      return normalise_accumulator(korn_gradient(gray, g.korn_sigmas_px), korn_reference_);
+    case SegmentationMethod::Morphological:
+      return normalise_accumulator(morphological_gradient(gray, g.morphological_sizes_px), morphological_reference_);
+    case SegmentationMethod::Lbp:
+      return normalise_accumulator(lbp_gradient(gray, g.lbp_neighbours, g.lbp_radii_px, g.lbp_min_stddev),
+                                   lbp_reference_);
+    case SegmentationMethod::Fusion:
+    case SegmentationMethod::Clustering:
+      break;
+  }
+  return fuse_accumulators(
+      {normalise_accumulator(korn_gradient(gray, g.korn_sigmas_px), korn_reference_),
+       normalise_accumulator(morphological_gradient(gray, g.morphological_sizes_px), morphological_reference_),
+       normalise_accumulator(lbp_gradient(gray, g.lbp_neighbours, g.lbp_radii_px, g.lbp_min_stddev), lbp_reference_)},
+      options_.regions.fusion_rule);
+}
+
+std::vector<Region> Segmenter::segment_window(const cv::Mat& gray, const cv::Rect& window,
+                                              const FeatureCluster& cluster,
+                                              const std::vector<cv::Point2d>& feature_positions) const {
+  const auto& r = options_.regions;
+  const cv::Mat acc = accumulator(gray);
+  const bool summed = options_.method == SegmentationMethod::Fusion && r.fusion_rule == FusionRule::Sum;
+  const double full_scale = summed ? 3.0 * 255.0 : 255.0;
+  const double threshold = adaptive_threshold(acc, r.threshold_quantile, r.threshold_min_fraction * full_scale);
+  const int connectivity = r.connectivity != 0 ? r.connectivity : options_.method == SegmentationMethod::Lbp ? 8 : 4;
+
+  const double vehicle_length = scene_.metres_to_px(scene_.vehicle_length_m);
+  const double vehicle_width = scene_.metres_to_px(scene_.vehicle_width_m);
+  std::vector<Region> regions;
+  for (Blob& blob : extract_blobs(acc, threshold, r.closing_size_px, r.edge_band_px, r.box_fit, connectivity)) {
+    blob.box.cx += window.x;
+    blob.box.cy += window.y;
+    const OrientedBox& box = blob.box;
+    if (box.length < r.min_length_factor * vehicle_length || box.length > r.max_length_factor * vehicle_length ||
+        box.width < r.min_width_factor * vehicle_width || box.width > r.max_width_factor * vehicle_width) {
+      continue;
+    }
+    OrientedBox grown = box;
+    grown.length += 2.0 * r.support_margin_px;
+    grown.width += 2.0 * r.support_margin_px;
+    int support = 0;
+    for (const auto& p : feature_positions) support += box_contains(grown, p) ? 1 : 0;
+    if (support < r.min_supporting_features || support == 0) continue;
+    Region region;
+    region.box = box;
+    region.method = options_.method;
+    region.score = static_cast<double>(support) / static_cast<double>(feature_positions.size());
+    region.cluster_id = static_cast<int32_t>(cluster.id);
+    regions.push_back(region);
+  }
+  return regions;
+}
+
+SegmentationResult Segmenter::process(const Frame& frame, const MotionEstimate& motion) {
+  return process(make_segmentation_input(frame, required_crops(motion, frame.image.size())), motion);
+}
+
+SegmentationResult Segmenter::process(const SegmentationInput& input, const MotionEstimate& motion) {
+  stats_ = SegmentationStats{};
+  SegmentationResult result;
+  result.stream_id = motion.stream_id;
+  result.frame_index = motion.frame_index;
+  result.capture_time_ns = motion.capture_time_ns;
+  result.clusters = cluster(motion, input.image_size, &stats_.clustering);
+
+  if (options_.method == SegmentationMethod::Clustering) {
+    for (const auto& c : result.clusters) result.regions.push_back(cluster_region(c));
+    return result;
+  }
+
+  std::vector<const ImageCrop*> crops;
+  for (const auto& crop : input.crops) {
+    if (crop_usable(crop)) crops.push_back(&crop); else ++stats_.invalid_crops;
+  }
+  // Positions of the clustered features by id (ids are unique in a well-formed estimate; a
+  // duplicated id contributes every position it has).
+  std::multimap<uint64_t, cv::Point2d> positions;
+  for (const auto& f : motion.features) {
+    if (f.moving && std::isfinite(f.position.x) && std::isfinite(f.position.y)) positions.emplace(f.id, f.position);
+  }
+
+  std::vector<Region> candidates;
+  for (const auto& c : result.clusters) {
+    std::vector<cv::Point2d> feature_positions;
+    for (uint64_t id : c.feature_ids) {
+      auto [first, last] = positions.equal_range(id);
+      for (auto it = first; it != last; ++it) feature_positions.push_back(it->second);
+    }
+    cv::Rect window = window_of(c, input.image_size);
+    // The crop that covers the window, else the one that covers most of it.
+    const ImageCrop* source = nullptr;
+    int best_area = 0;
+    for (const ImageCrop* crop : crops) {
+      const int area = (crop->roi & window).area();
+      if (area > best_area) {
+        best_area = area;
+        source = crop;
+      }
+      if (area == window.area()) break;
+    }
+    std::vector<Region> regions;
+    if (source != nullptr && !window.empty()) {
+      window &= source->roi;
+      cv::Mat pixels = source->pixels(window - source->roi.tl());
+      cv::Mat gray;
+      if (pixels.channels() == 3) cv::cvtColor(pixels, gray, cv::COLOR_BGR2GRAY); else gray = pixels;
+      ++stats_.windows;
+      regions = segment_window(gray, window, c, feature_positions);
+    } else {
+      ++stats_.windows_without_pixels;
+    }
+    if (options_.regions.fallback_to_cluster_box) {
+      if (regions.empty()) {
+        ++stats_.fallback_regions;
+        regions.push_back(cluster_region(c));
+      } else if (auto extra = uncovered_features_region(c, feature_positions, regions)) {
+        ++stats_.fallback_regions;
+        regions.push_back(*extra);
+      }
+    }
+    candidates.insert(candidates.end(), regions.begin(), regions.end());
+  }
+
+  for (const Region& candidate : candidates) {
+    const bool duplicate = std::any_of(result.regions.begin(), result.regions.end(), [&](const Region& kept) {
+      return covered_fraction(candidate.box, kept.box) > options_.regions.duplicate_overlap;
+    });
+    if (duplicate) ++stats_.duplicate_regions; else result.regions.push_back(candidate);
+  }
+  return result;
+}
+
+}  // namespace uavmot::segmentation

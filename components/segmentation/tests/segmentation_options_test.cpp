@@ -1,0 +1,64 @@
+#include "uavmot/segmentation/segmentation_options.hpp"
+
+#include <gtest/gtest.h>
+
+#include "uavmot/core/error.hpp"
+
+namespace uavmot::segmentation {
+namespace {
+
+SegmentationOptions load(const std::string& yaml) {
+  return load_segmentation_options(ConfigNode::load_string(yaml, "test.yaml"));
+}
+
+void expect_error_mentions(const std::string& yaml, const std::string& needle) {
+  try {
+    load(yaml);
+    FAIL() << "no error for: " << yaml;
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+  }
+}
+
+TEST(SegmentationOptions, DefaultsAreValidAndFusion) {
+  const SegmentationOptions o = load("{}");
+  EXPECT_EQ(o.method, SegmentationMethod::Fusion);
+  EXPECT_NO_THROW(validate(o));
+}
+
+TEST(SegmentationOptions, ReadsEveryKindOfField) {
+  const SegmentationOptions o = load(
+      "method: lbp\nlink_distance_m: 4.5\nkorn_sigmas_px: [1.0, 2.0]\nmorphological_sizes_px: [3, 7]\n"
+      "lbp_radii_px: [1, 3]\nfusion_rule: product\nfallback_to_cluster_box: false\nmin_features: 3\n");
+  EXPECT_EQ(o.method, SegmentationMethod::Lbp);
+  EXPECT_DOUBLE_EQ(o.clustering.link_distance_m, 4.5);
+  EXPECT_EQ(o.gradients.korn_sigmas_px, (std::vector<double>{1.0, 2.0}));
+  EXPECT_EQ(o.gradients.morphological_sizes_px, (std::vector<int>{3, 7}));
+  EXPECT_EQ(o.gradients.lbp_radii_px, (std::vector<double>{1.0, 3.0}));
+  EXPECT_EQ(o.regions.fusion_rule, FusionRule::Product);
+  EXPECT_FALSE(o.regions.fallback_to_cluster_box);
+  EXPECT_EQ(o.clustering.min_features, 3);
+}
+
+TEST(SegmentationOptions, BadValuesNameTheField) {
+  expect_error_mentions("method: watershed\n", "method");
+  expect_error_mentions("link_distanse_m: 3\n", "link_distanse_m");
+  expect_error_mentions("morphological_sizes_px: [3, 4]\n", "morphological_sizes_px");
+  expect_error_mentions("korn_sigmas_px: []\n", "korn_sigmas_px");
+  expect_error_mentions("korn_sigmas_px: [1, abc]\n", "korn_sigmas_px");
+  expect_error_mentions("threshold_quantile: 1.5\n", "threshold_quantile");
+  expect_error_mentions("closing_size_px: 4\n", "closing_size_px");
+  expect_error_mentions("min_length_factor: 2\nmax_length_factor: 1\n", "max_length_factor");
+}
+
+TEST(SegmentationOptions, ValidateRejectsOutOfDomainValues) {
+  SegmentationOptions o;
+  o.gradients.lbp_radii_px.clear();
+  EXPECT_THROW(validate(o), InvalidArgument);
+  o = SegmentationOptions{};
+  o.regions.threshold_quantile = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(validate(o), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace uavmot::segmentation

@@ -1,0 +1,20 @@
+#pragma once
+// A colour picture of one simulated frame with its ground truth drawn on it, for people to
+// judge realism: moving vehicles green (with velocity), stopped vehicles yellow, parked blue.
+
+#include <opencv2/core/mat.hpp>
+
+#include "uavmot/sim/simulator.hpp"
+
+namespace uavmot::sim {
+
+struct PreviewOptions {
+  double scale = 1.0;       // enlarge (e.g. 2) so small vehicles can be seen
+  bool draw_ids = true;
+  bool draw_velocity = true;
+  double velocity_gain = 10.0;  // arrow length in frames of motion
+};
+
+cv::Mat draw_ground_truth(const SimFrame& frame, const PreviewOptions& options = {});
+
+}  // namespace uavmot::sim

@@ -1,0 +1,236 @@
+#include "uavmot/sim/scenario.hpp"
+
+#include <cstdlib>
+#include <optional>
+#include <sstream>
+
+#include "scenario_fields.hpp"
+#include "uavmot/core/error.hpp"
+
+#ifndef UAVMOT_SIM_DEFAULT_TEXTURE_DIR
+#define UAVMOT_SIM_DEFAULT_TEXTURE_DIR "../shared/data/clif2007/jpg"
+#endif
+
+namespace uavmot::sim {
+namespace {
+
+// Reads the fields present in a ConfigNode, leaving the others at the base scenario's values.
+class YamlReader : public detail::FieldVisitor {
+ public:
+  explicit YamlReader(const ConfigNode& root) { stack_.push_back(Level{root, {}}); }
+
+  void begin_section(const char* name) override {
+    Level& parent = stack_.back();
+    parent.known.push_back(name);
+    std::optional<ConfigNode> node;
+    if (parent.node && parent.node->has(name)) node = parent.node->child(name);
+    stack_.push_back(Level{node, {}});
+  }
+  void end_section() override {
+    check_keys(stack_.back());
+    stack_.pop_back();
+  }
+  void field(const char* key, int& value, int min, int max) override {
+    if (note(key)) stack_.back().node->read(key, value, min, max);
+  }
+  void field(const char* key, double& value, double min, double max) override {
+    if (note(key)) stack_.back().node->read(key, value, min, max);
+  }
+  void field(const char* key, bool& value) override {
+    if (note(key)) stack_.back().node->read(key, value);
+  }
+  void field(const char* key, std::string& value) override {
+    if (note(key)) stack_.back().node->read(key, value);
+  }
+  void finish(const std::vector<std::string>& extra_top_level_keys) {
+    for (const auto& k : extra_top_level_keys) stack_.front().known.push_back(k);
+    check_keys(stack_.front());
+  }
+
+ private:
+  struct Level {
+    std::optional<ConfigNode> node;
+    std::vector<std::string> known;
+  };
+  bool note(const char* key) {
+    Level& level = stack_.back();
+    level.known.push_back(key);
+    return level.node && level.node->has(key);
+  }
+  static void check_keys(const Level& level) {
+    if (level.node) level.node->expect_only(level.known);
+  }
+  std::vector<Level> stack_;
+};
+
+// Writes every field as YAML, sections as nested maps.
+class YamlWriter : public detail::FieldVisitor {
+ public:
+  void begin_section(const char* name) override {
+    out_ << name << ":\n";
+    indent_ = "  ";
+  }
+  void end_section() override { indent_.clear(); }
+  void field(const char* key, int& value, int, int) override { out_ << indent_ << key << ": " << value << "\n"; }
+  void field(const char* key, double& value, double, double) override {
+    std::ostringstream number;
+    number.precision(17);
+    number << value;
+    out_ << indent_ << key << ": " << number.str() << "\n";
+  }
+  void field(const char* key, bool& value) override { out_ << indent_ << key << ": " << (value ? "true" : "false") << "\n"; }
+  void field(const char* key, std::string& value) override { out_ << indent_ << key << ": \"" << value << "\"\n"; }
+  std::string text() const { return out_.str(); }
+
+ private:
+  std::ostringstream out_;
+  std::string indent_;
+};
+
+std::string join_names() {
+  std::string names;
+  for (const auto& n : preset_names()) names += (names.empty() ? "" : ", ") + n;
+  return names;
+}
+
+}  // namespace
+
+const std::vector<std::string>& preset_names() {
+  static const std::vector<std::string> names{"paper", "lowsnr", "fastcam", "dense", "slow", "small", "hd"};
+  return names;
+}
+
+Scenario preset_scenario(const std::string& name) {
+  Scenario s;  // the defaults are the `paper` preset
+  s.name = name;
+  if (name == "paper") {
+    // About 0.35 m/px so cars are about 13-15 x 5 px; slow camera drift (paper Section V).
+    return s;
+  }
+  if (name == "lowsnr") {
+    // Dim, noisy, low-contrast imagery: many dark cars on dark asphalt.
+    s.sensor.noise_sigma = 7.0;
+    s.sensor.blur_sigma_px = 1.0;
+    s.sensor.contrast = 0.55;
+    s.sensor.brightness_offset = -20.0;
+    s.sensor.gain_drift = 0.08;
+    s.sensor.jpeg_quality = 70;
+    s.traffic.dark_fraction = 0.55;
+    return s;
+  }
+  if (name == "fastcam") {
+    // Tens of px per frame with yaw and zoom: a fast, manoeuvring platform.
+    s.camera.width = 800;
+    s.camera.height = 600;
+    s.camera.speed_mps = 180.0;  // ~20 px/frame at 0.35 m/px and 25 fps
+    s.camera.heading_deg = 10.0;
+    s.camera.path_curvature_dps = 2.0;
+    s.camera.yaw_rate_dps = 4.0;
+    s.camera.yaw_wobble_deg = 2.0;
+    s.camera.altitude_change = 0.15;
+    s.camera.altitude_period_s = 6.0;
+    s.camera.tilt_deg = 3.0;
+    s.camera.wobble_period_s = 4.0;
+    s.roads.main_road_angle_deg = 0.0;
+    s.roads.cross_roads = 3;
+    s.roads.curved_roads = 1;
+    s.traffic.flow_per_lane_vph = 900.0;
+    s.traffic.parked_vehicles = 30;
+    return s;
+  }
+  if (name == "dense") {
+    // Heavy traffic: overtaking pairs, convoys, queues at the stop line.
+    s.roads.main_lanes_per_direction = 3;
+    s.roads.cross_roads = 2;
+    s.traffic.flow_per_lane_vph = 1500.0;
+    s.traffic.convoy_probability = 0.45;
+    s.traffic.side_by_side_probability = 0.35;
+    s.traffic.overtake_eagerness = 2.0;
+    s.traffic.parked_vehicles = 30;
+    s.traffic.stop_period_s = 24.0;
+    s.traffic.stop_red_s = 9.0;
+    return s;
+  }
+  if (name == "slow") {
+    // Sub-pixel movers: 0.2-0.6 px/frame at 0.35 m/px and 25 fps.
+    s.camera.speed_mps = 1.0;
+    s.traffic.speed_min_mps = 0.2 * 0.35 * 25.0;
+    s.traffic.speed_max_mps = 0.6 * 0.35 * 25.0;
+    s.traffic.side_road_speed_factor = 1.0;
+    s.traffic.flow_per_lane_vph = 700.0;
+    s.traffic.stop_red_s = 0.0;
+    s.traffic.moving_threshold_mps = 0.3;
+    s.traffic.warmup_s = 200.0;
+    return s;
+  }
+  if (name == "small") {
+    // Higher altitude: cars about 8 x 3 px.
+    s.camera.gsd_m = 0.6;
+    s.camera.altitude_m = 500.0;
+    s.camera.speed_mps = 6.0;
+    s.roads.cross_roads = 2;
+    s.roads.curved_roads = 2;
+    s.traffic.parked_vehicles = 25;
+    return s;
+  }
+  if (name == "hd") {
+    // 1920 x 1080 for throughput measurements.
+    s.camera.width = 1920;
+    s.camera.height = 1080;
+    s.camera.gsd_m = 0.3;
+    s.camera.speed_mps = 4.0;
+    s.roads.cross_roads = 2;
+    s.roads.curved_roads = 1;
+    s.traffic.parked_vehicles = 30;
+    return s;
+  }
+  throw InvalidArgument("unknown scenario preset '" + name + "'; known presets: " + join_names());
+}
+
+Scenario load_scenario(const ConfigNode& node) {
+  Scenario s;
+  if (node.has("preset")) {
+    std::string preset;
+    node.read_choice("preset", preset, preset_names());
+    s = preset_scenario(preset);
+  }
+  YamlReader reader(node);
+  detail::visit_scenario(s, reader);
+  reader.finish({"preset"});
+  try {
+    validate_scenario(s);
+  } catch (const InputError& e) {
+    throw InputError(node.location() + ": " + e.what());
+  }
+  return s;
+}
+
+Scenario load_scenario_file(const std::string& file) { return load_scenario(ConfigNode::load_file(file)); }
+
+void validate_scenario(const Scenario& s) {
+  if (s.traffic.speed_min_mps > s.traffic.speed_max_mps)
+    throw InputError("traffic.speed_min_mps (" + std::to_string(s.traffic.speed_min_mps) +
+                     ") is larger than traffic.speed_max_mps (" + std::to_string(s.traffic.speed_max_mps) + ")");
+  if (s.traffic.van_fraction + s.traffic.truck_fraction > 1.0)
+    throw InputError("traffic.van_fraction + traffic.truck_fraction exceed 1");
+  if (s.traffic.stop_red_s >= s.traffic.stop_period_s && s.traffic.stop_red_s > 0.0)
+    throw InputError("traffic.stop_red_s must be shorter than traffic.stop_period_s");
+  if (s.frames < 1) throw InputError("frames must be at least 1");
+  if (s.camera.width % 2 != 0 || s.camera.height % 2 != 0)
+    throw InputError("camera.width and camera.height must be even (video encoding)");
+}
+
+std::string scenario_to_yaml(const Scenario& scenario) {
+  Scenario copy = scenario;
+  YamlWriter writer;
+  detail::visit_scenario(copy, writer);
+  return writer.text();
+}
+
+std::string default_texture_dir() {
+  if (const char* shared = std::getenv("UAVMOT_SHARED_DATA"); shared && *shared)
+    return std::string(shared) + "/clif2007/jpg";
+  return UAVMOT_SIM_DEFAULT_TEXTURE_DIR;
+}
+
+}  // namespace uavmot::sim

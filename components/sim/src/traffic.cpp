@@ -1,0 +1,326 @@
+#include "traffic.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace uavmot::sim::detail {
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+// Intelligent Driver Model parameters (Treiber et al.), typical urban values.
+constexpr double kMaxAccel = 1.2;      // m/s^2
+constexpr double kComfortDecel = 2.0;  // m/s^2
+constexpr double kMinGap = 2.0;        // m
+constexpr double kHeadway = 1.3;       // s
+constexpr double kLateralAccel = 2.0;  // m/s^2 allowed in bends
+constexpr double kLaneChangeDuration = 3.5;  // s
+
+double smoothstep(double x) {
+  x = std::clamp(x, 0.0, 1.0);
+  return x * x * (3.0 - 2.0 * x);
+}
+}  // namespace
+
+Traffic::Traffic(const Scenario& scenario, const RoadNetwork& network, cv::Point2d view_centre, double view_radius,
+                 uint64_t seed)
+    : scenario_(scenario), network_(network), rng_(seed ^ 0x7AFF1CULL) {
+  add_parked(view_centre, view_radius);
+  for (size_t r = 0; r < network_.roads.size(); ++r) {
+    for (int dir : {1, -1}) {
+      for (int lane = 0; lane < network_.roads[r].lanes_per_direction; ++lane) {
+        LaneState state;
+        state.key = {static_cast<int>(r), dir, lane};
+        schedule_arrivals(state);
+        lanes_.push_back(state);
+      }
+    }
+  }
+}
+
+Vehicle Traffic::make_vehicle(bool dark_allowed) {
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  const TrafficParams& t = scenario_.traffic;
+  Vehicle v;
+  v.internal_id = next_id_++;
+  const double kind = uni(rng_);
+  if (kind < t.truck_fraction) {
+    v.kind = VehicleKind::Truck;
+    v.length_m = 8.0 + 4.0 * uni(rng_);
+    v.width_m = 2.45 + 0.1 * uni(rng_);
+  } else if (kind < t.truck_fraction + t.van_fraction) {
+    v.kind = VehicleKind::Van;
+    v.length_m = 5.0 + 0.7 * uni(rng_);
+    v.width_m = 1.95 + 0.1 * uni(rng_);
+  } else {
+    v.kind = VehicleKind::Car;
+    v.length_m = 4.2 + 0.7 * uni(rng_);
+    v.width_m = 1.72 + 0.14 * uni(rng_);
+  }
+  // Luminance of common car paints: white, silver, gray, red, blue, green; dark ones near asphalt.
+  static const double bright[] = {232, 214, 188, 165, 140, 112, 98, 120};
+  static const double dark[] = {26, 36, 48, 60, 72};
+  const bool is_dark = dark_allowed && uni(rng_) < t.dark_fraction;
+  const double base = is_dark ? dark[static_cast<size_t>(uni(rng_) * 5) % 5] : bright[static_cast<size_t>(uni(rng_) * 8) % 8];
+  v.look.body = std::clamp(base + 8.0 * (uni(rng_) - 0.5), 0.0, 255.0);
+  v.look.roof = std::clamp(v.look.body + (is_dark ? 6.0 : -10.0) * uni(rng_), 0.0, 255.0);
+  v.look.glass = 22.0 + 22.0 * uni(rng_);
+  v.look.cargo = uni(rng_) < 0.7 ? 200.0 + 35.0 * uni(rng_) : 110.0 + 40.0 * uni(rng_);
+  return v;
+}
+
+void Traffic::add_parked(cv::Point2d view_centre, double view_radius) {
+  std::vector<ParkingSpot> spots;
+  for (const ParkingSpot& spot : network_.parking_spots)
+    if (cv::norm(spot.centre_m - view_centre) < view_radius) spots.push_back(spot);
+  std::shuffle(spots.begin(), spots.end(), rng_);
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  const int count = std::min<int>(scenario_.traffic.parked_vehicles, static_cast<int>(spots.size()));
+  for (int i = 0; i < count; ++i) {
+    Vehicle v = make_vehicle(true);
+    if (v.kind == VehicleKind::Truck) {  // no trucks in stalls
+      v.kind = VehicleKind::Van;
+      v.length_m = 5.2;
+      v.width_m = 2.0;
+    }
+    v.parked = true;
+    v.position_m = spots[i].centre_m + cv::Point2d(0.3 * (uni(rng_) - 0.5), 0.3 * (uni(rng_) - 0.5));
+    v.heading_rad = spots[i].heading_rad + (uni(rng_) - 0.5) * 6.0 * kPi / 180.0;
+    vehicles_.push_back(v);
+  }
+}
+
+void Traffic::schedule_arrivals(LaneState& lane) {
+  const Road& road = network_.roads[lane.key.road];
+  double flow = scenario_.traffic.flow_per_lane_vph / 3600.0;
+  if (!road.main) flow *= 0.6;
+  if (flow <= 0.0) {
+    lane.next_arrival_s = 1e300;
+    return;
+  }
+  std::exponential_distribution<double> gap(flow);
+  lane.next_arrival_s = time_ + gap(rng_);
+}
+
+double Traffic::lane_offset(const Road& road, int lane) const {
+  return (road.lanes_per_direction - lane - 0.5) * road.lane_width_m;
+}
+
+double Traffic::road_s(const Vehicle& v) const {
+  const Road& road = network_.roads[v.road];
+  return v.direction > 0 ? v.s_m : road.length() - v.s_m;
+}
+
+bool Traffic::red_light(const Vehicle& v) const {
+  const TrafficParams& t = scenario_.traffic;
+  if (t.stop_red_s <= 0.0) return false;
+  const double phase = std::fmod(time_, t.stop_period_s);
+  const bool main_red = phase < t.stop_red_s;
+  if (network_.roads[v.road].main) return main_red;
+  // Side roads get green only inside the main road's red phase, with clearance at both ends.
+  const double clearance = std::min(1.5, 0.2 * t.stop_red_s);
+  return !(phase >= clearance && phase < t.stop_red_s - clearance);
+}
+
+double Traffic::stop_line_gap(const Vehicle& v) const {
+  if (!red_light(v)) return 1e300;
+  const Road& road = network_.roads[v.road];
+  double best = 1e300;
+  for (const Crossing& x : network_.crossings) {
+    if (x.road_a != 0 && x.road_b != 0) continue;  // only crossings with the main road have signals
+    double s_cross = 0.0;
+    int other = -1;
+    if (x.road_a == v.road) {
+      s_cross = x.s_a;
+      other = x.road_b;
+    } else if (x.road_b == v.road) {
+      s_cross = x.s_b;
+      other = x.road_a;
+    } else {
+      continue;
+    }
+    const double lane_s = v.direction > 0 ? s_cross : road.length() - s_cross;
+    const double stop = lane_s - network_.roads[other].half_width() - 2.5;
+    const double gap = stop - (v.s_m + v.length_m / 2.0);
+    // A vehicle that can no longer stop comfortably drives through.
+    const double braking = v.speed_mps * v.speed_mps / (2.0 * 4.0);
+    if (gap > -0.5 && gap + 0.5 >= braking) best = std::min(best, std::max(0.0, gap));
+  }
+  return best;
+}
+
+double Traffic::gap_to_leader(const Vehicle& v, int lane, double& leader_speed) const {
+  const Road& road = network_.roads[v.road];
+  const double lane_lat = lane_offset(road, lane);
+  double best = 1e300;
+  leader_speed = 0.0;
+  for (const Vehicle& o : vehicles_) {
+    if (o.parked || o.internal_id == v.internal_id || o.road != v.road || o.direction != v.direction) continue;
+    if (o.s_m <= v.s_m) continue;
+    const bool occupies = o.lane == lane || std::abs(o.lateral_m - lane_lat) < 0.9 * road.lane_width_m;
+    if (!occupies) continue;
+    const double gap = o.s_m - v.s_m - (o.length_m + v.length_m) / 2.0;
+    if (gap < best) {
+      best = gap;
+      leader_speed = o.speed_mps;
+    }
+  }
+  return best;
+}
+
+double Traffic::gap_to_follower(const Vehicle& v, int lane) const {
+  const Road& road = network_.roads[v.road];
+  const double lane_lat = lane_offset(road, lane);
+  double best = 1e300;
+  for (const Vehicle& o : vehicles_) {
+    if (o.parked || o.internal_id == v.internal_id || o.road != v.road || o.direction != v.direction) continue;
+    if (o.s_m > v.s_m) continue;
+    const bool occupies = o.lane == lane || std::abs(o.lateral_m - lane_lat) < 0.9 * road.lane_width_m;
+    if (!occupies) continue;
+    best = std::min(best, v.s_m - o.s_m - (o.length_m + v.length_m) / 2.0);
+  }
+  return best;
+}
+
+void Traffic::try_spawn(LaneState& lane) {
+  if (lane.pending.empty() || lane.pending.front().time_s > time_) return;
+  const Road& road = network_.roads[lane.key.road];
+  const PendingSpawn spawn = lane.pending.front();
+  Vehicle v = make_vehicle(true);
+  v.road = lane.key.road;
+  v.direction = lane.key.direction;
+  v.lane = lane.key.lane;
+  v.lateral_m = lane_offset(road, v.lane);
+  v.s_m = v.length_m / 2.0;
+  v.desired_speed_mps = spawn.desired_speed_mps;
+  double leader_speed = 0.0;
+  const double gap = gap_to_leader(v, v.lane, leader_speed);
+  const double headway = spawn.convoy_member ? 0.9 : kHeadway;
+  if (gap < kMinGap + headway * std::min(v.desired_speed_mps, leader_speed + 2.0)) {
+    --next_id_;  // not spawned yet: keep ids contiguous
+    return;
+  }
+  v.speed_mps = std::min(v.desired_speed_mps, gap < 60.0 ? leader_speed : v.desired_speed_mps);
+  lane.pending.erase(lane.pending.begin());
+  update_pose(v);
+  vehicles_.push_back(v);
+}
+
+void Traffic::update_pose(Vehicle& v) const {
+  if (v.parked) return;
+  const Road& road = network_.roads[v.road];
+  const double s = road_s(v);
+  cv::Point2d tangent = road.tangent_at(s) * static_cast<double>(v.direction);
+  const cv::Point2d right(-tangent.y, tangent.x);
+  v.position_m = road.point_at(s) + right * v.lateral_m;
+  double heading = std::atan2(tangent.y, tangent.x);
+  if (v.lane_change_t >= 0.0 && v.speed_mps > 0.1) {
+    // Heading follows the lateral drift during a lane change.
+    const double target = lane_offset(road, v.lane);
+    const double x = v.lane_change_t;
+    const double lateral_rate = (target - v.lane_change_from_m) * 6.0 * x * (1.0 - x) / kLaneChangeDuration;
+    heading += std::atan2(lateral_rate, v.speed_mps);
+  }
+  v.heading_rad = heading;
+}
+
+void Traffic::step(double dt) {
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  const TrafficParams& t = scenario_.traffic;
+
+  // Arrivals: single vehicles, convoys, or side-by-side pairs.
+  for (size_t i = 0; i < lanes_.size(); ++i) {
+    LaneState& lane = lanes_[i];
+    while (lane.next_arrival_s <= time_) {
+      const Road& road = network_.roads[lane.key.road];
+      double speed = t.speed_min_mps + (t.speed_max_mps - t.speed_min_mps) * uni(rng_);
+      if (!road.main) speed *= t.side_road_speed_factor;
+      const double roll = uni(rng_);
+      if (roll < t.convoy_probability) {
+        const int members = 3 + static_cast<int>(uni(rng_) * 3.0);
+        for (int m = 0; m < members; ++m) lane.pending.push_back({lane.next_arrival_s, speed, m > 0});
+      } else if (roll < t.convoy_probability + t.side_by_side_probability && road.lanes_per_direction > 1) {
+        lane.pending.push_back({lane.next_arrival_s, speed, false});
+        const int other = lane.key.lane == 0 ? 1 : lane.key.lane - 1;
+        for (LaneState& o : lanes_)
+          if (o.key.road == lane.key.road && o.key.direction == lane.key.direction && o.key.lane == other)
+            o.pending.push_back({lane.next_arrival_s, speed * (0.97 + 0.06 * uni(rng_)), false});
+      } else {
+        lane.pending.push_back({lane.next_arrival_s, speed, false});
+      }
+      schedule_arrivals(lane);
+    }
+  }
+  for (LaneState& lane : lanes_) try_spawn(lane);
+
+  // Accelerations from the state at the start of the step (simultaneous update).
+  std::vector<double> accel(vehicles_.size(), 0.0);
+  std::vector<int> start_change(vehicles_.size(), -1);
+  for (size_t i = 0; i < vehicles_.size(); ++i) {
+    const Vehicle& v = vehicles_[i];
+    if (v.parked) continue;
+    const Road& road = network_.roads[v.road];
+    double leader_speed = 0.0;
+    double gap = gap_to_leader(v, v.lane, leader_speed);
+    const double stop_gap = stop_line_gap(v);
+    if (stop_gap < gap) {
+      gap = stop_gap;
+      leader_speed = 0.0;
+    }
+    double desired = v.desired_speed_mps;
+    const double k = road.max_curvature_ahead(road_s(v), 30.0);
+    if (k > 1e-4) desired = std::min(desired, std::sqrt(kLateralAccel / k));
+    desired = std::max(desired, 0.1);
+    const double dv = v.speed_mps - leader_speed;
+    const double s_star = kMinGap + std::max(0.0, v.speed_mps * kHeadway + v.speed_mps * dv / (2.0 * std::sqrt(kMaxAccel * kComfortDecel)));
+    const double free_term = std::pow(v.speed_mps / desired, 4.0);
+    const double interaction = gap < 1e200 ? std::pow(s_star / std::max(gap, 0.1), 2.0) : 0.0;
+    accel[i] = std::max(-9.0, kMaxAccel * (1.0 - free_term - interaction));
+
+    // Overtaking: move to the next inner lane when held up and that lane has room.
+    if (v.lane_change_t < 0.0 && road.lanes_per_direction > 1 && t.overtake_eagerness > 0.0 && v.speed_mps > 1.0) {
+      const double p = t.overtake_eagerness * dt;
+      if (v.lane + 1 < road.lanes_per_direction && gap < 45.0 && leader_speed < v.desired_speed_mps - 1.0) {
+        double other_speed = 0.0;
+        const double ahead = gap_to_leader(v, v.lane + 1, other_speed);
+        const double behind = gap_to_follower(v, v.lane + 1);
+        if (ahead > gap + 10.0 && behind > 8.0 + v.speed_mps && uni(rng_) < p) start_change[i] = v.lane + 1;
+      } else if (v.lane > 0) {
+        double other_speed = 0.0;
+        const double ahead = gap_to_leader(v, v.lane - 1, other_speed);
+        const double behind = gap_to_follower(v, v.lane - 1);
+        if (ahead > 50.0 && behind > 15.0 + v.speed_mps && uni(rng_) < 0.3 * p) start_change[i] = v.lane - 1;
+      }
+    }
+  }
+
+  for (size_t i = 0; i < vehicles_.size(); ++i) {
+    Vehicle& v = vehicles_[i];
+    if (v.parked) continue;
+    const cv::Point2d before = v.position_m;
+    const double new_speed = std::max(0.0, v.speed_mps + accel[i] * dt);
+    v.s_m += 0.5 * (v.speed_mps + new_speed) * dt;
+    v.speed_mps = new_speed;
+    const Road& road = network_.roads[v.road];
+    if (start_change[i] >= 0) {
+      v.lane_change_from_m = v.lateral_m;
+      v.lane = start_change[i];
+      v.lane_change_t = 0.0;
+    }
+    if (v.lane_change_t >= 0.0) {
+      v.lane_change_t = std::min(1.0, v.lane_change_t + dt / kLaneChangeDuration);
+      const double target = lane_offset(road, v.lane);
+      v.lateral_m = v.lane_change_from_m + (target - v.lane_change_from_m) * smoothstep(v.lane_change_t);
+      if (v.lane_change_t >= 1.0) v.lane_change_t = -1.0;
+    }
+    update_pose(v);
+    v.velocity_mps = (v.position_m - before) * (1.0 / dt);
+  }
+  // Vehicles leave at the end of their road.
+  vehicles_.erase(std::remove_if(vehicles_.begin(), vehicles_.end(),
+                                 [&](const Vehicle& v) {
+                                   return !v.parked && v.s_m > network_.roads[v.road].length() - v.length_m / 2.0;
+                                 }),
+                  vehicles_.end());
+  time_ += dt;
+}
+
+}  // namespace uavmot::sim::detail

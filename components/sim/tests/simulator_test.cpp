@@ -1,0 +1,208 @@
+#include <algorithm>
+#include <cmath>
+
+#include <gtest/gtest.h>
+#include <opencv2/core.hpp>
+#include <opencv2/imgproc.hpp>
+
+#include "test_scenarios.hpp"
+#include "uavmot/core/error.hpp"
+#include "uavmot/sim/simulator.hpp"
+
+namespace uavmot::sim {
+namespace {
+
+std::vector<SimFrame> run(const Scenario& s, uint64_t seed) {
+  Simulator sim(s, seed);
+  std::vector<SimFrame> frames;
+  SimFrame frame;
+  while (sim.next(frame)) frames.push_back(frame);
+  return frames;
+}
+
+bool same_image(const cv::Mat& a, const cv::Mat& b) {
+  return a.size() == b.size() && a.type() == b.type() && cv::countNonZero(a != b) == 0;
+}
+
+TEST(Simulator, SameSeedGivesIdenticalFramesAndTruth) {
+  const Scenario s = testing::small_scenario("paper", 4);
+  const auto a = run(s, 7), b = run(s, 7);
+  ASSERT_EQ(a.size(), 4u);
+  ASSERT_EQ(b.size(), 4u);
+  for (size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].encoded_jpeg, b[k].encoded_jpeg) << "frame " << k + 1;
+    EXPECT_TRUE(same_image(a[k].object_id_mask, b[k].object_id_mask));
+    ASSERT_EQ(a[k].objects.size(), b[k].objects.size());
+    for (size_t i = 0; i < a[k].objects.size(); ++i) {
+      EXPECT_EQ(a[k].objects[i].id, b[k].objects[i].id);
+      EXPECT_EQ(a[k].objects[i].box, b[k].objects[i].box);
+    }
+    EXPECT_EQ(a[k].homography_from_previous, b[k].homography_from_previous);
+  }
+}
+
+TEST(Simulator, DifferentSeedGivesDifferentFrames) {
+  const Scenario s = testing::small_scenario("paper", 2);
+  const auto a = run(s, 1), b = run(s, 2);
+  EXPECT_NE(a[1].encoded_jpeg, b[1].encoded_jpeg);
+}
+
+TEST(Simulator, FramesAreNumberedFromOneWithIdentityFirst) {
+  const auto frames = run(testing::small_scenario("paper", 3), 3);
+  ASSERT_EQ(frames.size(), 3u);
+  EXPECT_EQ(frames[0].index, 1);
+  EXPECT_EQ(frames[2].index, 3);
+  EXPECT_EQ(frames[0].homography_from_previous, Homography::eye());
+  EXPECT_EQ(frames[1].image.type(), CV_8UC1);
+  EXPECT_EQ(frames[1].image.cols, 320);
+  EXPECT_EQ(frames[1].object_id_mask.type(), CV_32S);
+  EXPECT_DOUBLE_EQ(frames[1].homography_from_previous(2, 2), 1.0);
+}
+
+// Mean absolute difference between frame k and frame k-1 warped by h, over background pixels
+// (no vehicle or shadow nearby in either frame) inside the warped image.
+double background_error(const SimFrame& previous, const SimFrame& current, const Homography& h) {
+  cv::Mat warped, valid;
+  cv::warpPerspective(previous.image, warped, cv::Mat(h), current.image.size(), cv::INTER_LINEAR);
+  cv::warpPerspective(cv::Mat(previous.image.size(), CV_8U, cv::Scalar(255)), valid, cv::Mat(h), current.image.size(),
+                      cv::INTER_NEAREST);
+  cv::Mat prev_objects, warped_objects;
+  cv::Mat(previous.object_id_mask != 0).copyTo(prev_objects);
+  cv::warpPerspective(prev_objects, warped_objects, cv::Mat(h), current.image.size(), cv::INTER_NEAREST);
+  cv::Mat objects = warped_objects | (current.object_id_mask != 0);
+  cv::dilate(objects, objects, cv::Mat(), cv::Point(-1, -1), 4);  // vehicles plus their shadows
+  cv::erode(valid, valid, cv::Mat(), cv::Point(-1, -1), 2);
+  const cv::Mat use = valid & ~objects;
+  cv::Mat diff;
+  cv::absdiff(warped, current.image, diff);
+  EXPECT_GT(cv::countNonZero(use), diff.total() / 2);
+  return cv::mean(diff, use)[0];
+}
+
+TEST(Simulator, TrueHomographyAlignsTheBackground) {
+  for (const std::string preset : {"paper", "fastcam"}) {
+    const auto frames = run(testing::clean_scenario(preset, 4), 5);
+    for (size_t k = 1; k < frames.size(); ++k) {
+      const Homography h = frames[k].homography_from_previous;
+      const double exact = background_error(frames[k - 1], frames[k], h);
+      // Half a pixel of error in the homography must be clearly visible in the residual.
+      const Homography shifted = cv::Matx33d(1, 0, 0.5, 0, 1, 0.5, 0, 0, 1) * h;
+      const double off = background_error(frames[k - 1], frames[k], shifted);
+      EXPECT_LT(exact, 1.5) << preset << " frame " << k + 1;
+      EXPECT_LT(exact, 0.45 * off) << preset << " frame " << k + 1;
+    }
+  }
+}
+
+TEST(Simulator, FastcamMovesTensOfPixelsPerFrame) {
+  const auto frames = run(testing::clean_scenario("fastcam", 3), 2);
+  const cv::Point2d centre(159.5, 119.5);
+  const cv::Point2d moved = apply_homography(frames[2].homography_from_previous, centre);
+  EXPECT_GT(cv::norm(moved - centre), 10.0);
+}
+
+TEST(Simulator, ParkedVehiclesFollowTheBackgroundExactly) {
+  const auto frames = run(testing::small_scenario("dense", 5), 11);
+  int checked = 0;
+  for (size_t k = 1; k < frames.size(); ++k) {
+    for (const ObjectTruth& o : frames[k].objects) {
+      if (!o.parked) continue;
+      EXPECT_FALSE(o.moving);
+      EXPECT_EQ(o.velocity_px, cv::Vec2d(0, 0));
+      const ObjectTruth* before = find_object(frames[k - 1], o.id);
+      if (before == nullptr) continue;
+      const cv::Point2d predicted = apply_homography(frames[k].homography_from_previous, {before->box.cx, before->box.cy});
+      EXPECT_NEAR(predicted.x, o.box.cx, 1e-6);
+      EXPECT_NEAR(predicted.y, o.box.cy, 1e-6);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 0) << "the dense preset should show parked vehicles";
+}
+
+TEST(Simulator, MovingVehiclesMoveRelativeToTheBackgroundByTheirVelocity) {
+  const auto frames = run(testing::small_scenario("paper", 4), 4);
+  int checked = 0;
+  for (size_t k = 1; k < frames.size(); ++k) {
+    for (const ObjectTruth& o : frames[k].objects) {
+      const ObjectTruth* before = find_object(frames[k - 1], o.id);
+      if (!o.moving || before == nullptr) continue;
+      const cv::Point2d predicted = apply_homography(frames[k].homography_from_previous, {before->box.cx, before->box.cy});
+      const cv::Point2d relative(o.box.cx - predicted.x, o.box.cy - predicted.y);
+      EXPECT_NEAR(relative.x, o.velocity_px[0], 0.05);
+      EXPECT_NEAR(relative.y, o.velocity_px[1], 0.05);
+      EXPECT_GT(cv::norm(relative), 0.01);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 3);
+}
+
+TEST(Simulator, VehiclesHaveTheirTrueSizeForTheGsd) {
+  const auto frames = run(testing::small_scenario("paper", 1), 9);
+  const double gsd = preset_scenario("paper").camera.gsd_m;
+  int cars = 0;
+  for (const ObjectTruth& o : frames[0].objects) {
+    if (o.kind != VehicleKind::Car) continue;
+    EXPECT_NEAR(o.box.length * gsd, 4.55, 0.45);
+    EXPECT_NEAR(o.box.width * gsd, 1.8, 0.2);
+    ++cars;
+  }
+  EXPECT_GT(cars, 3);
+}
+
+TEST(Simulator, SlowPresetMoversCrawlBelowAPixelPerFrame) {
+  Scenario s = testing::small_scenario("slow", 2);
+  const auto frames = run(s, 3);
+  std::vector<double> speeds;
+  for (const ObjectTruth& o : frames[1].objects)
+    if (o.moving) speeds.push_back(cv::norm(o.velocity_px));
+  ASSERT_GT(speeds.size(), 3u);
+  EXPECT_LE(*std::max_element(speeds.begin(), speeds.end()), 0.65);
+  std::sort(speeds.begin(), speeds.end());
+  EXPECT_GE(speeds[speeds.size() / 2], 0.15);
+}
+
+TEST(Simulator, MaskAndObjectAtAgreeWithTheBoxes) {
+  const auto frames = run(testing::small_scenario("paper", 1), 2);
+  const SimFrame& f = frames[0];
+  int checked = 0;
+  for (const ObjectTruth& o : f.objects) {
+    if (o.visibility < 1.0) continue;
+    EXPECT_EQ(object_at(f, {o.box.cx, o.box.cy}), o.id);
+    EXPECT_EQ(is_on_moving_object(f, {o.box.cx, o.box.cy}), o.moving);
+    // Just outside the box along the length axis: nothing there without tolerance.
+    const double a = o.box.angle_deg * CV_PI / 180.0;
+    const cv::Point2d outside(o.box.cx + std::cos(a) * (o.box.length / 2 + 1.6), o.box.cy + std::sin(a) * (o.box.length / 2 + 1.6));
+    if (object_at(f, outside) == 0) {
+      EXPECT_EQ(object_at(f, outside, 2.5), o.id);
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 2);
+  EXPECT_EQ(object_at(f, {-50.0, -50.0}, 3.0), 0);
+}
+
+TEST(Simulator, MissingTextureFolderIsAnInputError) {
+  Scenario s = testing::small_scenario("paper", 1);
+  s.ground.texture_dir = "/nonexistent/texture";
+  try {
+    Simulator sim(s, 1);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("/nonexistent/texture"), std::string::npos);
+  }
+}
+
+TEST(Simulator, ProceduralGroundNeedsNoImages) {
+  Scenario s = testing::small_scenario("paper", 2);
+  s.ground.texture_dir = "procedural";
+  const auto frames = run(s, 1);
+  ASSERT_EQ(frames.size(), 2u);
+  cv::Scalar mean, stddev;
+  cv::meanStdDev(frames[1].image, mean, stddev);
+  EXPECT_GT(stddev[0], 5.0);
+}
+
+}  // namespace
+}  // namespace uavmot::sim

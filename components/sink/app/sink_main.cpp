@@ -1,0 +1,139 @@
+// uavmot-sink: subscribes to motion, segmentation and tracks and writes the same files as
+// `uavmot process` (tracks.txt, tracks_obb.csv, homographies.txt, features.csv, clusters.txt,
+// regions.txt, summary.json) through the same writer, so lossless runs are byte-identical.
+// With several streams, each gets a folder of its own under --out.
+
+#include <filesystem>
+#include <map>
+#include <memory>
+
+#include <spdlog/spdlog.h>
+
+#include "motionPubSubTypes.h"
+#include "segmentationPubSubTypes.h"
+#include "tracksPubSubTypes.h"
+#include "uavmot/core/app.hpp"
+#include "uavmot/core/result_files.hpp"
+#include "uavmot/core/shutdown.hpp"
+#include "uavmot/dds/chain_convert.hpp"
+#include "uavmot/dds/health_reporter.hpp"
+#include "uavmot/dds/node_options.hpp"
+#include "uavmot/dds/node_support.hpp"
+
+namespace uavmot {
+namespace {
+
+struct StreamFiles {
+  std::unique_ptr<ResultFilesWriter> writer;
+  bool motion_ended = false, segmentation_ended = false, tracks_ended = false;
+  bool done() const { return motion_ended && segmentation_ended && tracks_ended; }
+};
+
+int sink_main(int argc, char** argv) {
+  dds::NodeOptions node;
+  std::string out_dir;
+  double gsd_m = 0.0, fps = 25.0, idle_timeout_s = 0.0;
+  int streams = 1;
+  return run_app(argc, argv, "sink", "write the chain's results to files (motion, segmentation, tracks -> tracks.txt ...)", [&](CLI::App& app) {
+    app.add_option("--out", out_dir, "output folder (one sub-folder per stream when --streams > 1)")->required();
+    app.add_option("--gsd", gsd_m, "ground sampling distance, m/px: adds metric columns")->check(CLI::PositiveNumber);
+    app.add_option("--fps", fps, "frame rate, for speeds")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--streams", streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--idle-timeout", idle_timeout_s, "fail if nothing arrives for this long once started (s, 0 = wait forever)");
+    dds::add_node_options(app, node);
+    return [&]() -> int {
+      dds::finalize(node, "sink");
+      install_shutdown_handler();
+      dds::Participant participant(node.dds);
+      auto motion = participant.make_reader<msg::MotionEstimatePubSubType>(dds::kMotionTopic, dds::TopicClass::Chain);
+      auto segmentation = participant.make_reader<msg::SegmentationPubSubType>(dds::kSegmentationTopic, dds::TopicClass::Chain);
+      auto tracks = participant.make_reader<msg::TrackListPubSubType>(dds::kTracksTopic, dds::TopicClass::Chain);
+      dds::HealthReporter health(participant, "sink", "*");
+      dds::RejectLog rejects;
+      std::map<std::string, StreamFiles> files;
+      const auto start = std::chrono::steady_clock::now();
+      auto last_sample = start;
+      bool started = false;
+
+      auto files_for = [&](const std::string& stream) -> StreamFiles& {
+        auto [it, fresh] = files.try_emplace(stream);
+        if (fresh) {
+          ResultFilesOptions o;
+          o.directory = streams > 1 ? (std::filesystem::path(out_dir) / stream).string() : out_dir;
+          o.fps = fps;
+          o.gsd_m = gsd_m;
+          it->second.writer = std::make_unique<ResultFilesWriter>(o);
+          spdlog::info("stream '{}' -> {}", stream, o.directory);
+        }
+        return it->second;
+      };
+      auto finished = [&]() {
+        int done = 0;
+        for (const auto& [id, f] : files) done += f.done() ? 1 : 0;
+        return done >= streams;
+      };
+      // Each topic comes from one writer, in frame order: write each as it arrives.
+      auto drain = [&](auto& reader, auto write, auto mark_end) {
+        typename std::remove_reference_t<decltype(*reader)>::Sample sample;
+        bool any = false;
+        while (reader->take(sample)) {
+          any = true;
+          StreamFiles& f = files_for(sample.stream_id().to_string());
+          if (sample.end_of_stream()) {
+            mark_end(f);
+            continue;
+          }
+          std::string why;
+          auto value = dds::from_msg(sample, why);
+          if (!value) {
+            health.invalid_sample();
+            rejects.log(reader->topic(), why);
+            continue;
+          }
+          write(f, *value);
+        }
+        return any;
+      };
+
+      while (!shutdown_requested() && !finished()) {
+        bool any = drain(motion, [&](StreamFiles& f, const MotionEstimate& m) { f.writer->write_motion(m); health.frame_in(); },
+                         [](StreamFiles& f) { f.motion_ended = true; });
+        any |= drain(segmentation, [](StreamFiles& f, const SegmentationResult& s) { f.writer->write_segmentation(s); },
+                     [](StreamFiles& f) { f.segmentation_ended = true; });
+        any |= drain(tracks, [&](StreamFiles& f, const TrackList& t) {
+                       f.writer->write_tracks(t);
+                       health.frame_out(t.frame_index, 0.0, dds::latency_ms_since(t.capture_time_ns));
+                     },
+                     [](StreamFiles& f) { f.tracks_ended = true; });
+        health.tick();
+        const auto now = std::chrono::steady_clock::now();
+        if (any) {
+          last_sample = now;
+          started = true;
+        } else {
+          tracks->wait_for_data(std::chrono::milliseconds(50));
+          if (started && idle_timeout_s > 0 && now - last_sample > std::chrono::duration<double>(idle_timeout_s)) {
+            spdlog::error("nothing arrived for {} s; closing the files with what was received", idle_timeout_s);
+            break;
+          }
+        }
+      }
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      for (auto& [id, f] : files) {
+        RunSummary summary;
+        summary.input = "dds:" + id;
+        summary.wall_time_s = seconds;
+        const int64_t frames = f.writer->frames_written();
+        f.writer->close(summary);
+        spdlog::info("stream '{}': {} frames written", id, frames);
+      }
+      health.report(msg::ComponentState::FINISHED);
+      return finished() ? kExitOk : kExitFailure;
+    };
+  });
+}
+
+}  // namespace
+}  // namespace uavmot
+
+int main(int argc, char** argv) { return uavmot::sink_main(argc, argv); }

@@ -1,0 +1,121 @@
+// uavmot-source: publishes the frames of a video, image folder or MOTChallenge sequence on
+// uavmot/frames, paced at a rate or, in lossless mode, as fast as the slowest subscriber takes them.
+
+#include <chrono>
+#include <thread>
+
+#include <spdlog/spdlog.h>
+
+#include "framePubSubTypes.h"
+#include "uavmot/core/app.hpp"
+#include "uavmot/core/error.hpp"
+#include "uavmot/core/shutdown.hpp"
+#include "uavmot/dds/frame_convert.hpp"
+#include "uavmot/dds/health_reporter.hpp"
+#include "uavmot/dds/node_options.hpp"
+#include "uavmot/dds/node_support.hpp"
+#include "uavmot/source/frame_source.hpp"
+
+namespace uavmot {
+namespace {
+
+int source_main(int argc, char** argv) {
+  source::FrameSourceOptions input;
+  dds::NodeOptions node;
+  std::string color = "gray";
+  double rate_hz = 0.0;
+  bool native_rate = false;
+  double wait_timeout_s = 30.0;
+
+  return run_app(argc, argv, "source", "publish frames of a video, image folder or MOTChallenge sequence", [&](CLI::App& app) {
+    app.add_option("input", input.path, "video file, image folder or MOTChallenge sequence folder")->required();
+    app.add_option("--stream-id", input.stream_id, "key of this stream (one per UAV)")->capture_default_str();
+    app.add_option("--start", input.start_frame, "first input frame (1-based)")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--count", input.max_frames, "number of frames (0 = all)")->check(CLI::NonNegativeNumber)->capture_default_str();
+    app.add_flag("--loop", input.loop, "start again after the last frame");
+    app.add_option("--color", color, "gray or color")->check(CLI::IsMember({"gray", "color"}))->capture_default_str();
+    app.add_flag("--skip-corrupt", input.skip_corrupt, "skip undecodable images with a warning instead of failing");
+    auto* rate = app.add_option("--rate", rate_hz, "publish at this rate (Hz); frames are timestamped at it")->check(CLI::PositiveNumber);
+    app.add_flag("--native", native_rate, "publish at the input's own frame rate (default in live mode)")->excludes(rate);
+    app.add_option("--wait-timeout", wait_timeout_s, "seconds to wait for subscribers")->capture_default_str();
+    node.wait_subscribers = 1;
+    dds::add_node_options(app, node);
+
+    return [&]() -> int {
+      dds::finalize(node, "source");
+      install_shutdown_handler();
+      input.color = source::parse_color_mode(color);
+      input.fps_override = rate_hz;
+      auto frames = source::open_frame_source(input);
+      const auto& info = frames->info();
+      spdlog::info("{} '{}': {}x{}, {} frames, {:.3f} fps", info.kind, input.path, info.size.width, info.size.height,
+                   info.frame_count, info.fps);
+
+      dds::Participant participant(node.dds);
+      auto writer = participant.make_writer<msg::FramePubSubType>(dds::kFramesTopic, dds::TopicClass::Frames);
+      dds::HealthReporter health(participant, "source", input.stream_id);
+      const bool lossless = node.dds.mode == dds::DeliveryMode::Lossless;
+      const bool paced = rate_hz > 0.0 || native_rate || !lossless;
+      const auto period = std::chrono::nanoseconds(static_cast<int64_t>(1e9 / info.fps));
+
+      const int wait_subscribers = node.wait_subscribers;
+      if (lossless) writer->set_required_readers(wait_subscribers);
+      if (wait_subscribers > 0) {
+        spdlog::info("waiting for {} subscriber(s) on {}", wait_subscribers, dds::kFramesTopic);
+        if (!writer->wait_for_matched(wait_subscribers, std::chrono::milliseconds(static_cast<int64_t>(wait_timeout_s * 1000)))) {
+          if (shutdown_requested()) return kExitOk;
+          spdlog::error("no subscriber within {} s", wait_timeout_s);
+          return kExitFailure;
+        }
+      }
+
+      Frame frame;
+      int64_t published = 0;
+      // Capture times go on the wire on the wall clock (stream start + (index - 1) / rate), so every
+      // component can tell its latency; the results never depend on them.
+      const int64_t stream_start_ns = dds::wall_clock_ns();
+      int exit_code = kExitOk;
+      const auto start = std::chrono::steady_clock::now();
+      try {
+        while (!shutdown_requested() && frames->next(frame)) {
+          if (paced) std::this_thread::sleep_until(start + period * (frame.index - 1));
+          const auto t0 = std::chrono::steady_clock::now();
+          frame.capture_time_ns += stream_start_ns;
+          auto sample = dds::to_msg(frame);
+          const bool ok = lossless ? writer->write_reliably(sample) : writer->write(sample);
+          if (!ok) {
+            if (lossless) {
+              spdlog::error("frame {} was not delivered; stopping so nothing is silently lost", frame.index);
+              exit_code = kExitFailure;
+              break;
+            }
+            health.dropped();
+          }
+          ++published;
+          health.frame_in();
+          health.frame_out(frame.index, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+          health.set_bytes_out(writer->bytes_sent());
+          health.tick();
+          if (published % 100 == 0) spdlog::info("published {} frames", published);
+        }
+      } catch (const InputError& e) {
+        // Frames already published stay published; the stream is closed properly below.
+        spdlog::error("{}", e.what());
+        exit_code = kExitBadInput;
+      }
+      auto eos = dds::end_of_stream_frame(input.stream_id, frame.index);
+      writer->write_reliably(eos, std::chrono::seconds(5));
+      writer->flush(std::chrono::seconds(5));
+      health.report(exit_code == kExitOk ? msg::ComponentState::FINISHED : msg::ComponentState::FAILED);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      spdlog::info("published {} frames in {:.2f} s ({:.1f} fps){}", published, seconds, published / std::max(seconds, 1e-9),
+                   frames->skipped() ? fmt::format(", skipped {} corrupt", frames->skipped()) : "");
+      return exit_code;
+    };
+  });
+}
+
+}  // namespace
+}  // namespace uavmot
+
+int main(int argc, char** argv) { return uavmot::source_main(argc, argv); }

@@ -1,0 +1,170 @@
+#include "uavmot/source/frame_source.hpp"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+
+#include <gtest/gtest.h>
+#include <opencv2/imgcodecs.hpp>
+
+#include "uavmot/core/error.hpp"
+#include "uavmot/source/sequence_info.hpp"
+
+namespace uavmot::source {
+namespace {
+namespace fs = std::filesystem;
+
+const fs::path kClif = fs::path(UAVMOT_SHARED_DATA) / "clif2007" / "jpg";
+const fs::path kAphillMp4 = fs::path(UAVMOT_SHARED_DATA) / "aphill" / "aphill_240_1fps_crf32.mp4";
+
+fs::path fresh_dir(const std::string& name) {
+  const fs::path dir = fs::temp_directory_path() / ("uavmot_source_test_" + name);
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string error_of(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+int64_t drain(FrameSource& source) {
+  Frame frame;
+  int64_t n = 0;
+  while (source.next(frame)) ++n;
+  return n;
+}
+
+TEST(FrameSource, ReadsImageFolderInOrderWithOneBasedIndices) {
+  auto source = open_frame_source({.path = kClif.string(), .max_frames = 5});
+  EXPECT_EQ(source->info().kind, "images");
+  EXPECT_EQ(source->info().frame_count, 5);
+  EXPECT_EQ(source->info().size, cv::Size(668, 1004));
+  Frame frame;
+  for (int i = 1; i <= 5; ++i) {
+    ASSERT_TRUE(source->next(frame));
+    EXPECT_EQ(frame.index, i);
+    EXPECT_EQ(frame.image.type(), CV_8UC1);
+    EXPECT_EQ(frame.capture_time_ns, static_cast<int64_t>((i - 1) * 1e9 / 25.0 + 0.5));
+  }
+  EXPECT_FALSE(source->next(frame));
+  // The first frame is the first file in sorted order.
+  const cv::Mat expected = cv::imread((kClif / "000000-100006.jpg").string(), cv::IMREAD_GRAYSCALE);
+  auto again = open_frame_source({.path = kClif.string(), .max_frames = 1});
+  ASSERT_TRUE(again->next(frame));
+  EXPECT_EQ(cv::norm(frame.image, expected, cv::NORM_INF), 0.0);
+}
+
+TEST(FrameSource, StartFrameLoopAndColor) {
+  auto source = open_frame_source({.path = kClif.string(), .start_frame = 249, .max_frames = 5, .loop = true,
+                                   .color = ColorMode::Color});
+  Frame frame;
+  ASSERT_TRUE(source->next(frame));
+  EXPECT_EQ(frame.image.type(), CV_8UC3);
+  const cv::Mat f249 = frame.image.clone();
+  EXPECT_TRUE(source->next(frame));  // 250
+  EXPECT_TRUE(source->next(frame));  // loops back to 249
+  EXPECT_EQ(frame.index, 3);
+  EXPECT_EQ(cv::norm(frame.image, f249, cv::NORM_INF), 0.0);
+  EXPECT_EQ(drain(*source), 2);
+}
+
+TEST(FrameSource, ReadsVideoWithItsFrameRate) {
+  auto source = open_frame_source({.path = kAphillMp4.string()});
+  EXPECT_EQ(source->info().kind, "video");
+  EXPECT_DOUBLE_EQ(source->info().fps, 1.0);
+  EXPECT_EQ(source->info().size, cv::Size(360, 240));
+  EXPECT_EQ(drain(*source), 310);
+}
+
+TEST(FrameSource, ReadsMotChallengeSequenceAndItsGsd) {
+  const fs::path seq = fresh_dir("mot");
+  fs::create_directories(seq / "img1");
+  for (int i = 1; i <= 3; ++i) {
+    cv::Mat img(48, 64, CV_8UC3, cv::Scalar(i * 10, 0, 0));
+    char name[32];
+    std::snprintf(name, sizeof(name), "%06d.png", i);
+    cv::imwrite((seq / "img1" / name).string(), img);
+  }
+  std::ofstream(seq / "seqinfo.ini") << "[Sequence]\nname=t\nimDir=img1\nframeRate=30\nseqLength=3\nimWidth=64\n"
+                                        "imHeight=48\nimExt=.png\ngsd=0.35\n";
+  auto source = open_frame_source({.path = seq.string()});
+  EXPECT_EQ(source->info().kind, "mot");
+  EXPECT_DOUBLE_EQ(source->info().fps, 30.0);
+  EXPECT_DOUBLE_EQ(source->info().gsd_m, 0.35);
+  EXPECT_EQ(drain(*source), 3);
+}
+
+TEST(FrameSourceBadInput, MissingPath) {
+  EXPECT_NE(error_of([] { open_frame_source({.path = "/nonexistent/video.mp4"}); }).find("does not exist"),
+            std::string::npos);
+}
+
+TEST(FrameSourceBadInput, EmptyDirectory) {
+  const fs::path dir = fresh_dir("empty");
+  EXPECT_NE(error_of([&] { open_frame_source({.path = dir.string()}); }).find("no images"), std::string::npos);
+}
+
+TEST(FrameSourceBadInput, NotAVideo) {
+  const fs::path dir = fresh_dir("notvideo");
+  std::ofstream(dir / "clip.mp4") << "this is not a video";
+  EXPECT_NE(error_of([&] { open_frame_source({.path = (dir / "clip.mp4").string()}); }).find("cannot open video"),
+            std::string::npos);
+}
+
+TEST(FrameSourceBadInput, TruncatedVideoDeliversWhatItCanThenFails) {
+  // A streamable mp4 (index first) cut in half: the first frames decode, then a clear error.
+  const fs::path dir = fresh_dir("truncated");
+  const fs::path whole = dir / "whole.mp4";
+  const std::string cmd = "ffmpeg -loglevel error -y -i '" + kAphillMp4.string() +
+                          "' -c copy -movflags +faststart '" + whole.string() + "'";
+  ASSERT_EQ(std::system(cmd.c_str()), 0);
+  const auto size = fs::file_size(whole);
+  fs::copy_file(whole, dir / "cut.mp4");
+  fs::resize_file(dir / "cut.mp4", size / 2);
+  auto source = open_frame_source({.path = (dir / "cut.mp4").string()});
+  Frame frame;
+  int64_t delivered = 0;
+  const std::string error = error_of([&] {
+    while (source->next(frame)) ++delivered;
+  });
+  EXPECT_NE(error.find("truncated or corrupt"), std::string::npos) << error;
+  EXPECT_GT(delivered, 50);
+  EXPECT_LT(delivered, 310);
+}
+
+TEST(FrameSourceBadInput, CorruptImageIsNamedOrSkipped) {
+  const fs::path dir = fresh_dir("corrupt");
+  for (int i = 1; i <= 4; ++i) {
+    fs::copy_file(kClif / ("000000-10000" + std::to_string(5 + i) + ".jpg"), dir / ("f" + std::to_string(i) + ".jpg"));
+  }
+  std::ofstream(dir / "f3.jpg", std::ios::trunc) << "garbage, not a jpeg";
+  auto strict = open_frame_source({.path = dir.string()});
+  Frame frame;
+  const std::string error = error_of([&] { drain(*strict); });
+  EXPECT_NE(error.find("f3.jpg"), std::string::npos) << error;
+
+  auto lenient = open_frame_source({.path = dir.string(), .skip_corrupt = true});
+  EXPECT_EQ(drain(*lenient), 3);
+  EXPECT_EQ(lenient->skipped(), 1);
+}
+
+TEST(FrameSourceBadInput, MalformedSeqinfo) {
+  const fs::path seq = fresh_dir("badseq");
+  fs::create_directories(seq / "img1");
+  std::ofstream(seq / "seqinfo.ini") << "[Sequence]\nframeRate=fast\n";
+  EXPECT_NE(error_of([&] { read_sequence_info(seq.string()); }).find("seqinfo.ini:2"), std::string::npos);
+}
+
+TEST(FrameSourceBadInput, StartBeyondEnd) {
+  EXPECT_NE(error_of([] { open_frame_source({.path = kClif.string(), .start_frame = 1000}); }).find("beyond"),
+            std::string::npos);
+}
+
+}  // namespace
+}  // namespace uavmot::source

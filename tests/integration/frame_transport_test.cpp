@@ -1,0 +1,96 @@
+// Video source and frame sink as two separate processes over real Fast DDS.
+
+#include <filesystem>
+#include <sstream>
+
+#include <gtest/gtest.h>
+
+#include "child_process.hpp"
+#include "uavmot/core/checksum.hpp"
+#include "uavmot/source/frame_source.hpp"
+
+namespace uavmot {
+namespace {
+using testing::binary;
+using testing::ChildProcess;
+
+const std::string kClif = std::string(UAVMOT_SHARED_DATA) + "/clif2007/jpg";
+
+struct ReceivedFrame {
+  int64_t index = 0;
+  int64_t capture_time_ns = 0;
+  uint64_t checksum = 0;
+  int64_t source_time_ns = 0;
+};
+
+std::vector<ReceivedFrame> read_frames_csv(const std::string& path) {
+  std::vector<ReceivedFrame> frames;
+  std::istringstream in(testing::read_file(path));
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::vector<std::string> cells;
+    std::stringstream row(line);
+    for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+    if (cells.size() != 10) continue;
+    frames.push_back({std::stoll(cells[1]), std::stoll(cells[2]), std::stoull(cells[7], nullptr, 16), std::stoll(cells[9])});
+  }
+  return frames;
+}
+
+TEST(FrameTransport, LosslessDeliversEveryFrameInOrderBitIdentical) {
+  const std::string out = testing::fresh_dir("frame_transport_lossless");
+  ChildProcess sink({binary("uavmot-framesink"), "--out", out, "--domain", "11", "--idle-timeout", "60"}, out + "/sink.log");
+  ChildProcess source({binary("uavmot"), "source", kClif, "--domain", "11", "--mode", "lossless"}, out + "/source.log");
+  ASSERT_EQ(source.wait(std::chrono::seconds(120)), 0) << source.log();
+  ASSERT_EQ(sink.wait(std::chrono::seconds(30)), 0) << sink.log();
+
+  // What the sink received, against the same frames decoded here.
+  const auto received = read_frames_csv(out + "/frames.csv");
+  auto frames = source::open_frame_source({.path = kClif});
+  Frame frame;
+  size_t i = 0;
+  while (frames->next(frame)) {
+    ASSERT_LT(i, received.size()) << "frame " << frame.index << " never arrived";
+    EXPECT_EQ(received[i].index, frame.index);
+    EXPECT_EQ(received[i].checksum, fnv1a64(frame.image.data, frame.image.total())) << "frame " << frame.index;
+    ++i;
+  }
+  EXPECT_EQ(i, 250u);
+  EXPECT_EQ(received.size(), 250u);
+}
+
+TEST(FrameTransport, RateModeTimestampsAndPacesAtTheRequestedRate) {
+  const std::string out = testing::fresh_dir("frame_transport_rate");
+  constexpr double kRate = 40.0;
+  constexpr int kFrames = 60;
+  ChildProcess sink({binary("uavmot-framesink"), "--out", out, "--domain", "12", "--mode", "live"}, out + "/sink.log");
+  ChildProcess source({binary("uavmot-source"), kClif, "--domain", "12", "--mode", "live", "--rate", "40", "--count",
+                       std::to_string(kFrames)},
+                      out + "/source.log");
+  ASSERT_EQ(source.wait(std::chrono::seconds(60)), 0) << source.log();
+  ASSERT_EQ(sink.wait(std::chrono::seconds(30)), 0) << sink.log();
+  const auto received = read_frames_csv(out + "/frames.csv");
+  ASSERT_GE(received.size(), static_cast<size_t>(kFrames * 0.9)) << "live mode over shared memory should lose little";
+  // Capture times are the stream's start on the wall clock plus exactly (index - 1) / rate.
+  const int64_t start_ns = received.front().capture_time_ns - static_cast<int64_t>((received.front().index - 1) * 1e9 / kRate + 0.5);
+  for (const auto& f : received) {
+    EXPECT_EQ(f.capture_time_ns - start_ns, static_cast<int64_t>((f.index - 1) * 1e9 / kRate + 0.5));
+  }
+  // Publication is paced: the span of DDS source timestamps matches the rate (loose bound: a shared machine).
+  const double span_s = (received.back().source_time_ns - received.front().source_time_ns) * 1e-9;
+  const double expected_s = (received.back().index - received.front().index) / kRate;
+  EXPECT_NEAR(span_s, expected_s, 0.25 * expected_s);
+}
+
+TEST(FrameTransport, SourceFailsClearlyOnBadInput) {
+  const std::string out = testing::fresh_dir("frame_transport_bad_input");
+  ChildProcess missing({binary("uavmot-source"), "/nonexistent/clip.mp4", "--domain", "13"}, out + "/missing.log");
+  EXPECT_EQ(missing.wait(std::chrono::seconds(20)), 2);
+  EXPECT_NE(missing.log().find("does not exist"), std::string::npos) << missing.log();
+  ChildProcess bad_flag({binary("uavmot-source"), kClif, "--mode", "sideways"}, out + "/flag.log");
+  EXPECT_NE(bad_flag.wait(std::chrono::seconds(20)), 0);
+}
+
+}  // namespace
+}  // namespace uavmot
