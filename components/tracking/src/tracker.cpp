@@ -218,6 +218,11 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   return out;
 }
 
+void Tracker::set_image_size(int width, int height) {
+  options_.image_width = std::max(0, width);
+  options_.image_height = std::max(0, height);
+}
+
 void Tracker::restore(const TrackerState& state) {
   auto check = [](const TrackRecord& t) {
     const KalmanState k = to_kalman(t);

@@ -243,12 +243,8 @@ TEST(TrackerScenario, TrackLeavingTheImageIsNotReportedOutsideIt) {
   opts.image_height = 200;
   for (const bool image_known : {false, true}) {
     SyntheticScene scene({car(1, {200, 100}, {3.0, 0.0})}, static_camera(), opts);
-    TrackerOptions topts;
-    if (image_known) {
-      topts.image_width = opts.image_width;
-      topts.image_height = opts.image_height;
-    }
-    Tracker tracker(topts);
+    Tracker tracker;
+    if (image_known) tracker.set_image_size(opts.image_width, opts.image_height);
     int outside_reported = 0;
     for (int k = 1; k <= 60; ++k) {
       const SyntheticFrame f = scene.next();
