@@ -18,7 +18,15 @@ void record_frame(TrackRecord& track, bool region_hit, bool supported, const Tra
   track.state = track.frames_since_update == 0 ? TrackState::Confirmed : TrackState::Coasting;
 }
 
-Fate decide_fate(const TrackRecord& track, const TrackerOptions& options) {
+bool inside_view(const OrientedBox& box, const TrackerOptions& options) {
+  if (options.image_width <= 0 || options.image_height <= 0) return true;
+  return box.cx >= -0.5 && box.cy >= -0.5 && box.cx < options.image_width - 0.5 && box.cy < options.image_height - 0.5;
+}
+
+Fate decide_fate(const TrackRecord& track, bool in_view, const TrackerOptions& options) {
+  if (!in_view) {
+    return (track.state != TrackState::Tentative && options.reacquire_max_frames > 0) ? Fate::Dormant : Fate::Delete;
+  }
   if (track.state == TrackState::Tentative) {
     const bool missed_too_often = static_cast<int>(track.frames_since_update) > options.tentative_max_misses;
     const bool too_late = static_cast<int>(track.age) >= options.confirm_window;

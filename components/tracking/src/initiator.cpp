@@ -10,8 +10,11 @@
 namespace uavmot::tracking {
 namespace {
 
-bool similar_size(const OrientedBox& a, const OrientedBox& b, double ratio) {
-  auto within = [ratio](double x, double y) { return std::max(x, y) <= ratio * std::max(std::min(x, y), 1e-6); };
+// Within the ratio, or within two region-size sigmas (a narrow box's width is noisy in relative terms).
+bool similar_size(const OrientedBox& a, const OrientedBox& b, double ratio, double slack_px) {
+  auto within = [ratio, slack_px](double x, double y) {
+    return std::max(x, y) <= ratio * std::max(std::min(x, y), 1e-6) || std::abs(x - y) <= slack_px;
+  };
   return within(a.length, b.length) && within(a.width, b.width);
 }
 
@@ -25,14 +28,18 @@ bool compatible_direction(const TrackRecord& track, const cv::Vec2d* region_velo
 }
 
 // The dormant track closest to `region` within the re-acquisition radius, or -1.
+// Vehicles that stop and go move along their axis, so the gate is long along it and narrow across.
 int find_dormant(const OrientedBox& region, const cv::Vec2d* region_velocity, const std::vector<TrackRecord>& dormant,
-                 double radius_px, double ratio, double min_speed) {
+                 double radius_px, double lateral_px, double ratio, double slack_px, double min_speed) {
   int best = -1;
   double best_distance = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < dormant.size(); ++i) {
     const OrientedBox& anchor = dormant[i].anchor_box;
-    const double d = cv::norm(cv::Point2d(region.cx - anchor.cx, region.cy - anchor.cy));
-    if (d <= radius_px && d < best_distance && similar_size(region, anchor, ratio) &&
+    const cv::Point2d uv = to_box_coordinates(anchor, {region.cx, region.cy});
+    const double along = std::abs(uv.x * anchor.length);
+    const double across = std::abs(uv.y * anchor.width);
+    const double d = along + across;
+    if (along <= radius_px && across <= lateral_px && d < best_distance && similar_size(region, anchor, ratio, slack_px) &&
         compatible_direction(dormant[i], region_velocity, min_speed)) {
       best = static_cast<int>(i);
       best_distance = d;
@@ -51,6 +58,7 @@ void initiate_tracks(const std::vector<int>& free_regions, const std::vector<Ori
   std::vector<OrientedBox> started;  // boxes started in this call, so two overlapping regions start one track
   const BoxMeasurementNoise noise = box_measurement_noise(options);
   const double radius_px = scene.metres_to_px(options.reacquire_radius_m);
+  const double lateral_px = scene.metres_to_px(options.reacquire_lateral_m);
   for (const int r : free_regions) {
     const OrientedBox& region = regions[static_cast<size_t>(r)];
     const double area = box_area(region);
@@ -64,8 +72,9 @@ void initiate_tracks(const std::vector<int>& free_regions, const std::vector<Ori
     const bool has_motion = region_motion(region, features, velocity);
     const KalmanState kalman = initial_state(
         region, velocity, has_motion ? options.init_velocity_sigma_features : options.init_velocity_sigma, noise);
-    const int dormant = find_dormant(region, has_motion ? &velocity : nullptr, state.dormant, radius_px,
-                                     options.reacquire_size_ratio, options.feature_min_speed_for_direction);
+    const int dormant = find_dormant(region, has_motion ? &velocity : nullptr, state.dormant, radius_px, lateral_px,
+                                     options.reacquire_size_ratio, 2.0 * options.region_size_sigma_px,
+                                     options.feature_min_speed_for_direction);
     TrackRecord track;
     if (dormant >= 0) {
       // Re-acquired: same id and history, fresh filter state, features relearnt.

@@ -176,8 +176,9 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   for (size_t i = 0; i < n; ++i) {
     posterior[i] = box_of(kalman[i].mean);
     store(kalman[i], state_.tracks[i]);
+    // The anchor is the last measured box (region or features), where a stopping vehicle stands.
+    if (region_hit[i] || supported[i]) state_.tracks[i].anchor_box = posterior[i];
     if (region_hit[i]) {
-      state_.tracks[i].anchor_box = posterior[i];
       refresh_feature_links(state_.tracks[i], posterior[i], features, options_.feature_uv_smoothing);
     }
   }
@@ -192,7 +193,7 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
     TrackRecord& t = state_.tracks[i];
     if (resolved.absorbed[i]) continue;  // a piece of another track's object
     record_frame(t, region_hit[i], supported[i], options_);
-    switch (decide_fate(t, options_)) {
+    switch (decide_fate(t, inside_view(posterior[i], options_), options_)) {
       case Fate::Keep:
         live_boxes.push_back(posterior[i]);
         live.push_back(std::move(t));
@@ -215,6 +216,11 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
 
   for (const auto& t : state_.tracks) out.tracks.push_back(to_output(t));
   return out;
+}
+
+void Tracker::set_image_size(int width, int height) {
+  options_.image_width = std::max(0, width);
+  options_.image_height = std::max(0, height);
 }
 
 void Tracker::restore(const TrackerState& state) {

@@ -56,6 +56,7 @@ const std::vector<DoubleField>& double_fields() {
       {"init_max_overlap_fraction", &TrackerOptions::init_max_overlap_fraction, 0.0, 1.0},
       {"min_region_area_px", &TrackerOptions::min_region_area_px, 0.0, 1e6},
       {"reacquire_radius_m", &TrackerOptions::reacquire_radius_m, 0.0, 1000.0},
+      {"reacquire_lateral_m", &TrackerOptions::reacquire_lateral_m, 0.0, 1000.0},
       {"reacquire_size_ratio", &TrackerOptions::reacquire_size_ratio, 1.0, 100.0},
   };
   return fields;
@@ -70,6 +71,8 @@ const std::vector<IntField>& int_fields() {
       {"tentative_max_misses", &TrackerOptions::tentative_max_misses, 0, 1000},
       {"max_coast_frames", &TrackerOptions::max_coast_frames, 0, 100000},
       {"reacquire_max_frames", &TrackerOptions::reacquire_max_frames, 0, 1000000},
+      {"image_width", &TrackerOptions::image_width, 0, 1000000},
+      {"image_height", &TrackerOptions::image_height, 0, 1000000},
   };
   return fields;
 }

@@ -235,6 +235,31 @@ TEST(TrackerScenario, VehicleLeavingAndReenteringTheView) {
   EXPECT_GT(visible_ids.back().first, 110);
 }
 
+TEST(TrackerScenario, TrackLeavingTheImageIsNotReportedOutsideIt) {
+  // Knowing the image size, a track is hidden as soon as its centre leaves the image, instead of
+  // coasting outside it.
+  SceneOptions opts;
+  opts.image_width = 300;
+  opts.image_height = 200;
+  for (const bool image_known : {false, true}) {
+    SyntheticScene scene({car(1, {200, 100}, {3.0, 0.0})}, static_camera(), opts);
+    Tracker tracker;
+    if (image_known) tracker.set_image_size(opts.image_width, opts.image_height);
+    int outside_reported = 0;
+    for (int k = 1; k <= 60; ++k) {
+      const SyntheticFrame f = scene.next();
+      for (const auto& t : tracker.process(f.motion, f.segmentation).tracks) {
+        outside_reported += (t.box.cx > opts.image_width) ? 1 : 0;
+      }
+    }
+    if (image_known) {
+      EXPECT_EQ(outside_reported, 0);
+    } else {
+      EXPECT_GT(outside_reported, 0);  // without the image size it coasts out
+    }
+  }
+}
+
 TEST(TrackerScenario, StopAndGoKeepsItsIdentity) {
   // Drives 60 frames, stands still for 100 frames (4 s at 25 fps: no region, no moving feature), drives on.
   ObjectPath o;

@@ -13,11 +13,15 @@ namespace uavmot::tracking {
 
 enum class Fate { Keep, Dormant, Delete };
 
+// False when the image size is known and the box centre lies outside the image.
+bool inside_view(const OrientedBox& box, const TrackerOptions& options);
+
 // Records one frame in the track's history: a region hit, support by features only, or nothing.
 void record_frame(TrackRecord& track, bool region_hit, bool supported, const TrackerOptions& options);
 
 // What happens to a live track after record_frame().
-Fate decide_fate(const TrackRecord& track, const TrackerOptions& options);
+// `in_view`: see inside_view(); a track that left the view goes dormant (confirmed) or is deleted.
+Fate decide_fate(const TrackRecord& track, bool in_view, const TrackerOptions& options);
 
 // Carries dormant tracks' anchors through the frame's homography and deletes the expired ones.
 void age_dormant(TrackerState& state, const Homography& h, const TrackerOptions& options);

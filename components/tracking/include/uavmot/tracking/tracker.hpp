@@ -23,6 +23,11 @@ class Tracker {
   // ignored (counted in state()). Returns tentative, confirmed and coasting tracks, ascending id.
   TrackList process(const MotionEstimate& motion, const SegmentationResult& segmentation);
 
+  // The image size, when it becomes known after construction (e.g. from the first frame): tracks
+  // whose centre leaves the image are then hidden instead of coasting outside it. Same as setting
+  // TrackerOptions::image_width/height; non-positive values mean unknown.
+  void set_image_size(int width, int height);
+
   TrackerState state() const { return state_; }
   // Throws uavmot::InvalidArgument for a state that is not self-consistent (e.g. non-finite values).
   void restore(const TrackerState& state);

@@ -66,9 +66,16 @@ struct TrackerOptions {
   int max_coast_frames = 5;                 // a confirmed track coasts this many frames on prediction
   // Then it waits hidden (dormant) at its last measured ground position for this many frames and is
   // re-acquired with the same id by a new region nearby (stop-and-go); 0 deletes it at once.
-  int reacquire_max_frames = 150;
-  double reacquire_radius_m = 3.0;          // converted to px with SceneInfo::gsd_m
+  int reacquire_max_frames = 375;           // 15 s at 25 fps: longer than a red light
+  double reacquire_radius_m = 3.0;          // along the track's axis; converted to px with SceneInfo::gsd_m
+  double reacquire_lateral_m = 1.0;         // across the track's axis (a car in the next lane is not it)
   double reacquire_size_ratio = 1.6;        // max ratio between the region's and the track's length/width
+
+  // --- The image (set by the pipeline from the source; 0 = unknown) --------------------------
+  // A track whose predicted centre leaves the image stops being reported at once: a confirmed one
+  // goes dormant (re-acquirable if the view comes back), a tentative one is deleted.
+  int image_width = 0;
+  int image_height = 0;
 };
 
 // Reads the `tracking:` section; every key optional, unknown keys and out-of-range values are

@@ -34,7 +34,7 @@ struct TrackRecord {
   uint32_t hit_history = 0;          // bit i set: region measurement i frames ago
   uint32_t frames_since_update = 0;  // frames without region or feature support
   uint32_t frames_dormant = 0;       // frames spent hidden, waiting to be re-acquired
-  OrientedBox anchor_box;            // last region-updated box, carried by the homographies
+  OrientedBox anchor_box;            // last measured box (region or features), carried by the homographies
   std::vector<FeatureLink> features;
 };
 
