@@ -103,6 +103,8 @@ MotionEstimate MotionEstimator::Impl::process(const Frame& frame) {
   out.stream_id = frame.stream_id;
   out.frame_index = frame.index;
   out.capture_time_ns = frame.capture_time_ns;
+  out.image_width = frame.image.cols;
+  out.image_height = frame.image.rows;
   Pyramid current = build_pyramid(gray_, options_);
 
   const bool valid = track_and_estimate(current, out);

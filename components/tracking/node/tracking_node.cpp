@@ -40,6 +40,7 @@ int tracking_main(int argc, char** argv) {
                    dds::TopicClass::Chain, streams, node.wait_subscribers},
                   [&](const std::string& stream, const MotionEstimate& motion, const SegmentationResult& segmentation) {
                     auto& tracker = trackers.try_emplace(stream, options.tracking, options.scene).first->second;
+                    tracker.set_image_size(motion.image_width, motion.image_height);
                     return dds::to_msg(tracker.process(motion, segmentation));
                   });
       return paired.run();
