@@ -2,11 +2,11 @@
 
 # Warnings apply to project code only; generated IDL code gets its own flags.
 function(uavmot_set_warnings target)
-  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow=local -Wnon-virtual-dtor)
-  # GCC 12 reports std::string concatenation at -O3 as -Wrestrict (GCC bug 105329): a false positive.
-  if(CMAKE_CXX_COMPILER_ID STREQUAL "GNU")
-    target_compile_options(${target} PRIVATE -Wno-restrict)
-  endif()
+  # -Wshadow=local is GCC's spelling. GCC 12 reports std::string concatenation at -O3 as
+  # -Wrestrict (GCC bug 105329): a false positive.
+  set(gnu $<CXX_COMPILER_ID:GNU>)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic $<${gnu}:-Wshadow=local> -Wnon-virtual-dtor
+                                           $<${gnu}:-Wno-restrict>)
   if(UAVMOT_WERROR)
     target_compile_options(${target} PRIVATE -Werror)
   endif()

@@ -29,7 +29,7 @@ TEST(LaunchProfile, ShippedProfilesLoadAndResolve) {
   for (const char* name : {"local.yaml"}) {
     const auto profile = load_profile(std::string(UAVMOT_SOURCE_DIR) + "/bringup/" + name);
     EXPECT_FALSE(profile.processes.empty()) << name;
-    const auto resolved = resolve(profile, {{"input", "seq"}, {"out", "o"}, {"gsd", "0.35"}, {"fps", "25"}, {"profile_dir", "."}});
+    const auto resolved = resolve(profile, {{"input", "seq"}, {"out", "o"}, {"gsd", "0.35"}, {"fps", "25"}, {"profile_dir", "."}, {"run_dir", "/tmp/r"}});
     for (const auto& p : resolved.processes) {
       for (const auto& a : p.args) EXPECT_EQ(a.find("${"), std::string::npos) << name << " " << p.name << " " << a;
     }
