@@ -45,6 +45,8 @@ msg::MotionEstimate to_msg(const MotionEstimate& motion) {
   m.stream_id(motion.stream_id);
   m.frame_index(motion.frame_index);
   m.capture_time_ns(motion.capture_time_ns);
+  m.image_width(static_cast<uint32_t>(motion.image_width));
+  m.image_height(static_cast<uint32_t>(motion.image_height));
   m.homography(to_row_major(motion.homography));
   m.valid(motion.quality.valid);
   m.inliers(motion.quality.inliers);
@@ -72,6 +74,12 @@ std::optional<MotionEstimate> from_msg(const msg::MotionEstimate& m, std::string
   motion.stream_id = m.stream_id().to_string();
   motion.frame_index = m.frame_index();
   motion.capture_time_ns = m.capture_time_ns();
+  if (m.image_width() > 65536 || m.image_height() > 65536) {
+    why = "image size " + std::to_string(m.image_width()) + "x" + std::to_string(m.image_height()) + " out of range";
+    return std::nullopt;
+  }
+  motion.image_width = static_cast<int>(m.image_width());
+  motion.image_height = static_cast<int>(m.image_height());
   motion.homography = from_row_major(m.homography());
   if (!is_finite(motion.homography)) {
     why = "homography is not finite";

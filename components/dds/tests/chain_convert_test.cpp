@@ -12,6 +12,8 @@ MotionEstimate sample_motion() {
   m.stream_id = "uav2";
   m.frame_index = 9;
   m.capture_time_ns = 360'000'000;
+  m.image_width = 1024;
+  m.image_height = 768;
   m.homography = Homography(1.0001, 0.0002, 3.14159265358979, -0.0003, 0.9998, -2.718281828459045, 1e-7, -2e-7, 1);
   m.quality = {true, 412, 0.0731};
   m.features = {{1, {10.123456789, 20.5}, {0.31, -0.01}, 0.02, 17, true}, {5, {300.0, 1.0 / 3.0}, {0, 0}, 0.01, 2, false}};
@@ -26,6 +28,8 @@ TEST(ChainConvert, MotionRoundTripIsExact) {
   EXPECT_EQ(out->stream_id, in.stream_id);
   EXPECT_EQ(out->frame_index, in.frame_index);
   EXPECT_EQ(out->capture_time_ns, in.capture_time_ns);
+  EXPECT_EQ(out->image_width, 1024);
+  EXPECT_EQ(out->image_height, 768);
   for (int i = 0; i < 9; ++i) EXPECT_EQ(out->homography.val[i], in.homography.val[i]);
   EXPECT_EQ(out->quality.inliers, 412u);
   EXPECT_EQ(out->quality.residual_px, 0.0731);

@@ -5,6 +5,8 @@
 #include <sstream>
 #include <iostream>
 
+#include <unistd.h>
+
 #include <spdlog/spdlog.h>
 
 #include "uavmot/core/app.hpp"
@@ -45,6 +47,10 @@ int launch_main(int argc, char** argv) {
       std::map<std::string, std::string> vars;
       vars["out"] = out_dir;
       vars["profile_dir"] = fs::absolute(profile_file).parent_path().string();
+      // A folder of this launch's own: respawned processes find what their predecessor left
+      // (e.g. the tracker's state); a new launch never sees an old run's.
+      const fs::path run_dir = fs::temp_directory_path() / ("uavmot-launch-" + std::to_string(::getpid()));
+      vars["run_dir"] = run_dir.string();
       vars["gsd"] = "0.35";
       vars["fps"] = "25";
       if (!input.empty()) {
@@ -70,7 +76,11 @@ int launch_main(int argc, char** argv) {
         }
         return kExitOk;
       }
-      return supervisor.run();
+      std::error_code ec;
+      fs::remove_all(run_dir, ec);
+      const int code = supervisor.run();
+      fs::remove_all(run_dir, ec);
+      return code;
     };
   });
 }

@@ -3,10 +3,12 @@
 //   uavmot-noceres the same without the Ceres refinement
 //   videostab      cv::videostab::KeypointBasedMotionEstimator + MotionEstimatorRansacL2 (homography)
 //   plain          goodFeaturesToTrack + calcOpticalFlowPyrLK + findHomography(RANSAC) per frame pair
-// Frames: real CLIF 2007 texture warped along a smooth camera path (components/motion/testing).
+// Frames: a simulator preset (--sim, e.g. hd = 1920 x 1080) or real CLIF 2007 texture warped along
+// a smooth camera path (components/motion/testing); both give the exact homographies.
 // Prints a markdown table: per-frame time (median, mean, p90) and mean transfer error vs truth.
 #include <algorithm>
 #include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <functional>
 #include <iostream>
@@ -22,16 +24,27 @@
 #include <opencv2/videostab/global_motion.hpp>
 
 #include "uavmot/core/error.hpp"
+#include "uavmot/core/yaml_config.hpp"
 #include "uavmot/motion/motion_estimator.hpp"
+#include "uavmot/sim/simulator.hpp"
 #include "warped_sequence.hpp"
 
 namespace {
 
 using uavmot::Homography;
 
+// CPU time of this thread: on a shared, loaded machine it measures the work on one core,
+// where wall time would also count waiting for the CPU.
+double thread_cpu_ms() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) * 1e3 + static_cast<double>(t.tv_nsec) * 1e-6;
+}
+
 struct Result {
   std::string name;
-  std::vector<double> ms;
+  std::vector<double> ms;       // thread CPU time
+  std::vector<double> wall_ms;
   std::vector<double> error_px;  // per valid frame pair
   int valid = 0;
 };
@@ -53,22 +66,32 @@ Homography from_mat(const cv::Mat& m) {
   return h;
 }
 
-// Runs `estimate(k)` for k = 2..frames (frame 1 is a warm-up call when `warm_up` is given).
-Result measure(const std::string& name, int frames, const uavmot::motion::testing::WarpedSequence& seq,
-               const std::function<bool(int, Homography&)>& estimate) {
+struct Frames {
+  std::vector<cv::Mat> images;
+  std::vector<Homography> truth;  // truth[k - 1]: frame k-1 -> k
+  std::string description;
+};
+
+// Runs `estimate(k)` for k = 1..frames; frame 1 has no pair and is not counted.
+Result measure(const std::string& name, const Frames& frames, const std::function<bool(int, Homography&)>& estimate) {
   Result r;
   r.name = name;
-  const cv::Size size = seq.options().frame_size;
-  for (int k = 1; k <= frames; ++k) {
+  const cv::Size size = frames.images.front().size();
+  const int count = static_cast<int>(frames.images.size());
+  for (int k = 1; k <= count; ++k) {
     Homography h = Homography::eye();
     const auto t0 = std::chrono::steady_clock::now();
+    const double c0 = thread_cpu_ms();
     const bool ok = estimate(k, h);
+    const double c1 = thread_cpu_ms();
     const auto t1 = std::chrono::steady_clock::now();
     if (k == 1) continue;  // no pair yet (uavmot's first call only detects)
-    r.ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+    r.ms.push_back(c1 - c0);
+    r.wall_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
     if (ok) {
       ++r.valid;
-      r.error_px.push_back(uavmot::mean_transfer_error(h, seq.true_homography(k), size.width, size.height));
+      r.error_px.push_back(
+          uavmot::mean_transfer_error(h, frames.truth[static_cast<size_t>(k - 1)], size.width, size.height));
     }
   }
   return r;
@@ -82,6 +105,8 @@ int main(int argc, char** argv) {
   int frames = 60, width = 1920, height = 1080, threads = 1, features = 1000;
   double speed = 3.0, rotation = 0.05, noise = 1.0, zoom = 0.0005;
   bool describe = false, only_uavmot = false;
+  std::string sim_preset, config;
+  uint64_t seed = 42;
   app.add_option("--clif", clif, "folder with the CLIF 2007 jpg frames (texture)");
   app.add_option("--frames", frames, "frames to process")->check(CLI::Range(3, 100000));
   app.add_option("--width", width, "frame width")->check(CLI::Range(64, 10000));
@@ -92,6 +117,9 @@ int main(int argc, char** argv) {
   app.add_option("--noise", noise, "sensor noise sigma, grey levels");
   app.add_option("--threads", threads, "OpenCV threads (cv::setNumThreads)")->check(CLI::Range(1, 64));
   app.add_option("--baseline-features", features, "corners for the baselines (videostab default: 1000)");
+  app.add_option("--sim", sim_preset, "render frames with this simulator preset (e.g. hd) instead of warped CLIF");
+  app.add_option("--seed", seed, "simulator seed");
+  app.add_option("--config", config, "YAML file with a motion: section for uavmot's options");
   app.add_flag("--only-uavmot", only_uavmot, "skip the no-Ceres variant and the baselines (for profiling)");
   app.add_flag("--describe", describe, "print a one-line description");
   CLI11_PARSE(app, argc, argv);
@@ -101,23 +129,50 @@ int main(int argc, char** argv) {
   }
   try {
     cv::setNumThreads(threads);
-    uavmot::motion::testing::WarpedSequenceOptions o;
-    o.clif_folder = clif;
-    o.frame_size = cv::Size(width, height);
-    o.camera_speed_px = speed;
-    o.rotation_deg_per_frame = rotation;
-    o.zoom_per_frame = zoom;
-    o.noise_sigma = noise;
-    const uavmot::motion::testing::WarpedSequence seq(o);
-    std::vector<cv::Mat> images;
-    for (int k = 1; k <= frames; ++k) images.push_back(seq.frame(k));
+    uavmot::motion::MotionOptions options;
+    if (!config.empty()) {
+      options = uavmot::motion::load_motion_options(uavmot::ConfigNode::load_file(config).child("motion"));
+    }
+    Frames input;
+    uavmot::SceneInfo scene;
+    if (!sim_preset.empty()) {
+      uavmot::sim::Scenario scenario = uavmot::sim::preset_scenario(sim_preset);
+      scenario.frames = frames;
+      uavmot::sim::Simulator simulator(scenario, seed);
+      scene = simulator.scene();
+      uavmot::sim::SimFrame frame;
+      while (simulator.next(frame)) {
+        input.images.push_back(frame.image.clone());
+        input.truth.push_back(frame.homography_from_previous);
+      }
+      input.description = "simulator preset '" + sim_preset + "' (seed " + std::to_string(seed) + "), " +
+                          std::to_string(scenario.camera.width) + "x" + std::to_string(scenario.camera.height);
+    } else {
+      uavmot::motion::testing::WarpedSequenceOptions o;
+      o.clif_folder = clif;
+      o.frame_size = cv::Size(width, height);
+      o.camera_speed_px = speed;
+      o.rotation_deg_per_frame = rotation;
+      o.zoom_per_frame = zoom;
+      o.noise_sigma = noise;
+      const uavmot::motion::testing::WarpedSequence seq(o);
+      for (int k = 1; k <= frames; ++k) {
+        input.images.push_back(seq.frame(k));
+        input.truth.push_back(seq.true_homography(k));
+      }
+      char text[200];
+      std::snprintf(text, sizeof text, "warped CLIF texture %dx%d, camera %.1f px/frame, %.2f deg/frame, noise %.1f",
+                    width, height, speed, rotation, noise);
+      input.description = text;
+    }
+    const std::vector<cv::Mat>& images = input.images;
 
     std::vector<Result> results;
     auto run_uavmot = [&](const std::string& name, bool refine) {
-      uavmot::motion::MotionOptions options;
-      options.refine = refine;
-      uavmot::motion::MotionEstimator estimator(options);
-      return measure(name, frames, seq, [&](int k, Homography& h) {
+      uavmot::motion::MotionOptions variant = options;
+      variant.refine = refine;
+      uavmot::motion::MotionEstimator estimator(variant, scene);
+      return measure(name, input, [&](int k, Homography& h) {
         uavmot::Frame f;
         f.index = k;
         f.image = images[static_cast<size_t>(k - 1)];
@@ -129,8 +184,8 @@ int main(int argc, char** argv) {
     results.push_back(run_uavmot("uavmot", true));
     if (only_uavmot) {
       const auto& r = results[0];
-      std::printf("uavmot: median %.2f ms, mean %.2f ms, error %.4f px\n", percentile(r.ms, 0.5), mean(r.ms),
-                  mean(r.error_px));
+      std::printf("uavmot: CPU median %.2f ms, mean %.2f ms, max %.2f ms; error %.4f px\n", percentile(r.ms, 0.5),
+                  mean(r.ms), percentile(r.ms, 1.0), mean(r.error_px));
       return 0;
     }
     results.push_back(run_uavmot("uavmot, no Ceres refinement", false));
@@ -140,7 +195,7 @@ int main(int argc, char** argv) {
       auto ransac = cv::makePtr<MotionEstimatorRansacL2>(MM_HOMOGRAPHY);
       KeypointBasedMotionEstimator estimator(ransac);
       estimator.setDetector(cv::GFTTDetector::create(features));
-      results.push_back(measure("OpenCV videostab (KeypointBased + RansacL2)", frames, seq, [&](int k, Homography& h) {
+      results.push_back(measure("OpenCV videostab (KeypointBased + RansacL2)", input, [&](int k, Homography& h) {
         if (k == 1) return false;
         bool ok = false;
         const cv::Mat m = estimator.estimate(images[static_cast<size_t>(k - 2)], images[static_cast<size_t>(k - 1)], &ok);
@@ -148,7 +203,7 @@ int main(int argc, char** argv) {
         return ok;
       }));
     }
-    results.push_back(measure("plain GFTT + PyrLK + findHomography", frames, seq, [&](int k, Homography& h) {
+    results.push_back(measure("plain GFTT + PyrLK + findHomography", input, [&](int k, Homography& h) {
       if (k == 1) return false;
       const cv::Mat& prev = images[static_cast<size_t>(k - 2)];
       const cv::Mat& cur = images[static_cast<size_t>(k - 1)];
@@ -170,16 +225,17 @@ int main(int argc, char** argv) {
       return true;
     }));
 
-    std::printf("%dx%d, %d frames, camera %.1f px/frame, %.2f deg/frame, noise %.1f, cv threads %d\n\n", width,
-                height, frames, speed, rotation, noise, threads);
-    std::printf("| method | median ms | mean ms | p90 ms | valid pairs | mean transfer error px | p95 error px |\n");
-    std::printf("|---|---|---|---|---|---|---|\n");
+    std::printf("%s, %zu frames, cv threads %d\n\n", input.description.c_str(), images.size(), threads);
+    std::printf(
+        "| method | CPU ms median | CPU ms mean | CPU ms p90 | CPU ms max | wall ms median | valid pairs | mean transfer "
+        "error px | p95 error px |\n");
+    std::printf("|---|---|---|---|---|---|---|---|---|\n");
     for (const auto& r : results) {
-      std::printf("| %s | %.2f | %.2f | %.2f | %d/%zu | %.4f | %.4f |\n", r.name.c_str(), percentile(r.ms, 0.5),
-                  mean(r.ms), percentile(r.ms, 0.9), r.valid, r.ms.size(), mean(r.error_px),
-                  percentile(r.error_px, 0.95));
+      std::printf("| %s | %.2f | %.2f | %.2f | %.2f | %.2f | %d/%zu | %.4f | %.4f |\n", r.name.c_str(),
+                  percentile(r.ms, 0.5), mean(r.ms), percentile(r.ms, 0.9), percentile(r.ms, 1.0),
+                  percentile(r.wall_ms, 0.5), r.valid, r.ms.size(), mean(r.error_px), percentile(r.error_px, 0.95));
     }
-    std::printf("\nspeed-up of uavmot (mean time): %.1fx vs videostab, %.1fx vs plain\n",
+    std::printf("\nspeed-up of uavmot (mean CPU time): %.1fx vs videostab, %.1fx vs plain\n",
                 mean(results[2].ms) / mean(results[0].ms), mean(results[3].ms) / mean(results[0].ms));
   } catch (const uavmot::InputError& e) {
     std::cerr << "error: " << e.what() << "\n";

@@ -89,13 +89,22 @@ std::vector<Candidate> cell_candidates(const cv::Mat& gray, const cv::Rect& cell
 
 }  // namespace
 
+int detection_cell_size(const MotionOptions& o, cv::Size size) {
+  if (o.cell_size_px > 0) return o.cell_size_px;
+  const double area = static_cast<double>(size.width) * size.height;
+  const double cell = std::sqrt(area * o.features_per_cell / std::max(1, o.max_features));
+  return std::clamp(static_cast<int>(std::lround(cell)), 8, 1024);
+}
+
+namespace {
+
 // Shared by both entry points; `retry_at` (may be null) holds the empty-cell back-off.
 std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
                                          const MotionOptions& o, std::vector<int64_t>* retry_at, int64_t call) {
   std::vector<cv::Point2f> added;
   int budget = o.max_features - static_cast<int>(existing.size());
   if (budget <= 0 || gray.empty()) return added;
-  const int cell = o.cell_size_px;
+  const int cell = detection_cell_size(o, gray.size());
   const int cols = (gray.cols + cell - 1) / cell;
   const int rows = (gray.rows + cell - 1) / cell;
   CellBuckets buckets(cols, rows, cell, o.min_distance_px);
@@ -127,6 +136,8 @@ std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const std::vector<
   return added;
 }
 
+}  // namespace
+
 std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
                                                 const MotionOptions& o) {
   return detect_in_cells(gray, existing, o, nullptr, 0);
@@ -134,7 +145,7 @@ std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::
 
 std::vector<cv::Point2f> GridCornerDetector::detect(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
                                                     bool continuous) {
-  const int cell = options_.cell_size_px;
+  const int cell = detection_cell_size(options_, gray.size());
   const size_t cells = static_cast<size_t>(((gray.cols + cell - 1) / cell) * ((gray.rows + cell - 1) / cell));
   if (!continuous || gray.size() != size_ || retry_at_.size() != cells) {
     size_ = gray.size();

@@ -12,6 +12,11 @@
 
 namespace uavmot::motion {
 
+// Side of the detection grid cells for an image of `size`: cell_size_px, or when that is 0, the
+// size at which the cells hold max_features (features_per_cell each), so feature density follows
+// the image size.
+int detection_cell_size(const MotionOptions& options, cv::Size size);
+
 // New corners in `gray` (CV_8UC1): at least min_distance_px from every point of `existing` and
 // from each other, at most features_per_cell per cell counting `existing`, no more than
 // max_features in total, above min_corner_response. Deterministic order: cells row-major,

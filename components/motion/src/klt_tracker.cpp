@@ -1,5 +1,9 @@
 #include "klt_tracker.hpp"
 
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
 
 namespace uavmot::motion {
@@ -44,6 +48,27 @@ void track_features(const Pyramid& previous, const Pyramid& current, const std::
     if (!(p.x >= lo && p.y >= lo && p.x <= hi_x && p.y <= hi_y)) continue;
     tracked[i] = 1;
   }
+}
+
+cv::Point2d coarse_translation(const Pyramid& previous, const Pyramid& current, bool& confident) {
+  confident = false;
+  // buildOpticalFlowPyramid with derivatives interleaves image and derivative levels.
+  const int levels = static_cast<int>(previous.levels.size()) / 2;
+  int level = 0;
+  while (level + 1 < levels && std::min(previous.levels[static_cast<size_t>(2 * (level + 1))].cols,
+                                        previous.levels[static_cast<size_t>(2 * (level + 1))].rows) >= 64) {
+    ++level;
+  }
+  if (level >= static_cast<int>(current.levels.size()) / 2) return {0, 0};
+  cv::Mat a, b, window;
+  previous.levels[static_cast<size_t>(2 * level)].convertTo(a, CV_32F);
+  current.levels[static_cast<size_t>(2 * level)].convertTo(b, CV_32F);
+  if (a.size() != b.size() || a.empty()) return {0, 0};
+  cv::createHanningWindow(window, a.size(), CV_32F);
+  double response = 0.0;
+  const cv::Point2d shift = cv::phaseCorrelate(a, b, window, &response);
+  confident = response > 0.02 && std::isfinite(shift.x) && std::isfinite(shift.y);
+  return shift * static_cast<double>(1 << level);
 }
 
 }  // namespace uavmot::motion

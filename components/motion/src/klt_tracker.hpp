@@ -27,4 +27,10 @@ void track_features(const Pyramid& previous, const Pyramid& current, const std::
                     const std::vector<cv::Point2f>& guess, const MotionOptions& options,
                     std::vector<cv::Point2f>& to, std::vector<unsigned char>& tracked);
 
+// Global translation from `previous` to `current` by phase correlation on a coarse pyramid level
+// (the coarsest whose smaller side is at least 64 px), in full-resolution pixels. Used to recover
+// when the previous motion is no guide (a jump, dropped frames). `confident` is false when the
+// correlation peak is weak.
+cv::Point2d coarse_translation(const Pyramid& previous, const Pyramid& current, bool& confident);
+
 }  // namespace uavmot::motion

@@ -1,11 +1,13 @@
 #include "uavmot/motion/motion_estimator.hpp"
 
+#include <algorithm>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include <opencv2/imgproc.hpp>
 
+#include "background_flow.hpp"
 #include "grid_corner_detector.hpp"
 #include "homography_estimation.hpp"
 #include "homography_refinement.hpp"
@@ -42,6 +44,14 @@ class MotionEstimator::Impl {
   Impl(MotionOptions options, SceneInfo scene)
       : options_(std::move(options)), scene_(scene), detector_(options_) {
     validate(options_);
+    if (options_.min_moving_speed_mps > 0.0) {
+      if (!(scene_.gsd_m > 0.0) || !(scene_.fps > 0.0)) {
+        throw InputError("motion options: min_moving_speed_mps needs a scene with gsd_m > 0 and fps > 0");
+      }
+      // One threshold in px/frame for the classifier: the stricter of the two.
+      const double from_ground = options_.min_moving_speed_mps / (scene_.gsd_m * scene_.fps);
+      options_.min_moving_speed_px = std::max(options_.min_moving_speed_px, from_ground);
+    }
   }
 
   MotionEstimate process(const Frame& frame);
@@ -93,6 +103,8 @@ MotionEstimate MotionEstimator::Impl::process(const Frame& frame) {
   out.stream_id = frame.stream_id;
   out.frame_index = frame.index;
   out.capture_time_ns = frame.capture_time_ns;
+  out.image_width = frame.image.cols;
+  out.image_height = frame.image.rows;
   Pyramid current = build_pyramid(gray_, options_);
 
   const bool valid = track_and_estimate(current, out);
@@ -112,31 +124,55 @@ MotionEstimate MotionEstimator::Impl::process(const Frame& frame) {
 bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEstimate& out) {
   if (previous_.empty() || previous_.size != current.size || features_.empty()) return false;
   const MotionOptions& o = options_;
-  std::vector<cv::Point2f> from, guess, to;
+  std::vector<cv::Point2f> from;
   from.reserve(features_.size());
   for (const auto& f : features_) from.push_back(f.position);
-  if (o.predict_with_previous_homography && last_valid_) {
-    for (const auto& p : from) {
-      const cv::Point2d q = apply_homography(last_motion_, cv::Point2d(p));
-      guess.emplace_back(static_cast<float>(q.x), static_cast<float>(q.y));
-    }
-  } else {
-    guess = from;
-  }
-  std::vector<unsigned char> tracked;
-  track_features(previous_, current, from, guess, o, to, tracked);
 
+  // One tracking attempt from the initial positions `guess`; true when it gives a usable homography.
   std::vector<cv::Point2f> src, dst;
   std::vector<size_t> index;  // into features_
-  for (size_t i = 0; i < features_.size(); ++i) {
-    if (!tracked[i]) continue;
-    src.push_back(from[i]);
-    dst.push_back(to[i]);
-    index.push_back(i);
+  RobustHomography robust;
+  auto attempt = [&](const std::vector<cv::Point2f>& guess) {
+    std::vector<cv::Point2f> to;
+    std::vector<unsigned char> tracked;
+    track_features(previous_, current, from, guess, o, to, tracked);
+    src.clear();
+    dst.clear();
+    index.clear();
+    for (size_t i = 0; i < features_.size(); ++i) {
+      if (!tracked[i]) continue;
+      src.push_back(from[i]);
+      dst.push_back(to[i]);
+      index.push_back(i);
+    }
+    if (static_cast<double>(src.size()) < o.min_tracked_ratio * static_cast<double>(features_.size())) {
+      robust = RobustHomography{};
+      return false;
+    }
+    robust = estimate_robust_homography(src, dst, current.size, o);
+    return robust.ok;
+  };
+
+  std::vector<cv::Point2f> guess = from;
+  if (o.predict_with_previous_homography && last_valid_) {
+    for (auto& p : guess) {
+      const cv::Point2d q = apply_homography(last_motion_, cv::Point2d(p));
+      p = cv::Point2f(static_cast<float>(q.x), static_cast<float>(q.y));
+    }
   }
-  if (static_cast<double>(src.size()) < o.min_tracked_ratio * static_cast<double>(features_.size())) return false;
-  const RobustHomography robust = estimate_robust_homography(src, dst, current.size, o);
-  if (!robust.ok) return false;
+  bool ok = attempt(guess);
+  if (!ok && o.recover_large_motion) {
+    // The camera jumped (dropped frames, a jerk): start again from a coarse global translation.
+    bool confident = false;
+    const cv::Point2d shift = coarse_translation(previous_, current, confident);
+    if (confident) {
+      for (size_t i = 0; i < from.size(); ++i) {
+        guess[i] = from[i] + cv::Point2f(static_cast<float>(shift.x), static_cast<float>(shift.y));
+      }
+      ok = attempt(guess);
+    }
+  }
+  if (!ok) return false;
 
   Homography h = robust.h;
   if (o.refine) {
@@ -169,8 +205,21 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
     f.history.carry_forward(h);
     f.history.push(f.position, o.history_frames);
     f.velocity = estimate_velocity(f.history, o);
-    f.classifier.update(f.velocity, static_cast<int>(f.age), o);
     survivors.push_back(std::move(f));
+  }
+  // Remove the smooth residual field of the background (lens distortion, relief) before deciding.
+  BackgroundFlow flow(o.background_flow_degree, current.size);
+  std::vector<cv::Point2f> positions;
+  std::vector<cv::Vec2d> velocities;
+  for (const auto& f : survivors) {
+    if (f.history.size() < o.min_track_frames) continue;
+    positions.push_back(f.position);
+    velocities.push_back(f.velocity.velocity);
+  }
+  flow.fit(positions, velocities);
+  for (auto& f : survivors) {
+    if (f.velocity.available) f.velocity.velocity -= flow.field(f.position);
+    f.classifier.update(f.velocity, static_cast<int>(f.age), o);
   }
   features_ = std::move(survivors);
   return true;

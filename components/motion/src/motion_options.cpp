@@ -9,14 +9,15 @@ MotionOptions load_motion_options(const ConfigNode& node) {
   node.expect_only({"max_features", "cell_size_px", "features_per_cell", "min_distance_px", "corner_block_size",
                     "min_corner_response", "border_px", "empty_cell_retry_frames", "lk_window_px", "pyramid_levels", "lk_max_iterations",
                     "lk_epsilon_px", "backward_levels", "max_forward_backward_px",
-                    "predict_with_previous_homography", "robust_method", "ransac_threshold_px",
+                    "predict_with_previous_homography", "recover_large_motion", "robust_method", "ransac_threshold_px",
                     "ransac_max_iterations", "ransac_confidence", "min_inliers", "min_inlier_ratio",
                     "min_tracked_ratio", "max_motion_fraction", "max_scale_change", "refine", "refine_loss",
-                    "refine_loss_scale_px", "refine_max_iterations", "refine_exclude_moving", "history_frames",
+                    "refine_loss_scale_px", "refine_max_iterations", "refine_exclude_moving", "background_flow_degree", "history_frames",
                     "min_track_frames", "position_sigma_px", "prior_weight", "moving_sigma_factor",
-                    "min_moving_speed_px", "confirm_frames", "release_ratio"});
+                    "min_moving_speed_px", "min_moving_speed_mps", "confirm_frames", "release_ratio"});
   node.read("max_features", o.max_features, 10, 100000);
-  node.read("cell_size_px", o.cell_size_px, 8, 1024);
+  node.read("cell_size_px", o.cell_size_px, 0, 1024);
+  if (o.cell_size_px > 0 && o.cell_size_px < 8) node.fail("cell_size_px", "must be 0 (automatic) or >= 8");
   node.read("features_per_cell", o.features_per_cell, 1, 64);
   node.read("min_distance_px", o.min_distance_px, 1.0, 256.0);
   node.read("corner_block_size", o.corner_block_size, 3, 15);
@@ -44,12 +45,14 @@ MotionOptions load_motion_options(const ConfigNode& node) {
   node.read("refine_loss_scale_px", o.refine_loss_scale_px, 1e-3, 100.0);
   node.read("refine_max_iterations", o.refine_max_iterations, 1, 1000);
   node.read("refine_exclude_moving", o.refine_exclude_moving);
+  node.read("background_flow_degree", o.background_flow_degree, 0, 4);
   node.read("history_frames", o.history_frames, 2, 200);
   node.read("min_track_frames", o.min_track_frames, 2, 200);
   node.read("position_sigma_px", o.position_sigma_px, 1e-4, 10.0);
   node.read("prior_weight", o.prior_weight, 0.0, 1000.0);
   node.read("moving_sigma_factor", o.moving_sigma_factor, 0.0, 100.0);
   node.read("min_moving_speed_px", o.min_moving_speed_px, 0.0, 1000.0);
+  node.read("min_moving_speed_mps", o.min_moving_speed_mps, 0.0, 1000.0);
   node.read("confirm_frames", o.confirm_frames, 1, 100);
   node.read("release_ratio", o.release_ratio, 0.0, 1.0);
   if (o.lk_window_px % 2 == 0) node.fail("lk_window_px", "must be odd, got " + std::to_string(o.lk_window_px));
@@ -73,7 +76,7 @@ void require(bool ok, const std::string& message) {
 
 void validate(const MotionOptions& o) {
   require(o.max_features >= 10, "max_features must be >= 10");
-  require(o.cell_size_px >= 8, "cell_size_px must be >= 8");
+  require(o.cell_size_px == 0 || o.cell_size_px >= 8, "cell_size_px must be 0 (automatic) or >= 8");
   require(o.features_per_cell >= 1, "features_per_cell must be >= 1");
   require(o.min_distance_px >= 1.0, "min_distance_px must be >= 1");
   require(o.corner_block_size >= 3 && o.corner_block_size % 2 == 1, "corner_block_size must be odd and >= 3");
@@ -99,12 +102,14 @@ void validate(const MotionOptions& o) {
           "refine_loss must be cauchy, huber or none");
   require(o.refine_loss_scale_px > 0.0, "refine_loss_scale_px must be > 0");
   require(o.refine_max_iterations >= 1, "refine_max_iterations must be >= 1");
+  require(o.background_flow_degree >= 0 && o.background_flow_degree <= 4, "background_flow_degree must be in [0, 4]");
   require(o.history_frames >= 2, "history_frames must be >= 2");
   require(o.min_track_frames >= 2 && o.min_track_frames <= o.history_frames,
           "min_track_frames must be in [2, history_frames]");
   require(o.position_sigma_px > 0.0, "position_sigma_px must be > 0");
   require(o.prior_weight >= 0.0, "prior_weight must be >= 0");
-  require(o.moving_sigma_factor >= 0.0 && o.min_moving_speed_px >= 0.0, "moving thresholds must be >= 0");
+  require(o.moving_sigma_factor >= 0.0 && o.min_moving_speed_px >= 0.0 && o.min_moving_speed_mps >= 0.0,
+          "moving thresholds must be >= 0");
   require(o.confirm_frames >= 1, "confirm_frames must be >= 1");
   require(o.release_ratio >= 0.0 && o.release_ratio <= 1.0, "release_ratio must be in [0, 1]");
 }

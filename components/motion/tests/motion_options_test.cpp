@@ -1,7 +1,9 @@
 #include "uavmot/motion/motion_options.hpp"
 
 #include <gtest/gtest.h>
+#include <opencv2/core.hpp>
 
+#include "grid_corner_detector.hpp"
 #include "uavmot/motion/motion_estimator.hpp"
 
 namespace uavmot::motion {
@@ -11,12 +13,14 @@ TEST(MotionOptions, DefaultsAreValid) { EXPECT_NO_THROW(validate(MotionOptions{}
 
 TEST(MotionOptions, ReadsKeysAndKeepsDefaults) {
   const auto node = ConfigNode::load_string(
-      "max_features: 500\nrobust_method: magsac\nrefine_loss: huber\nmin_moving_speed_px: 0.2\n", "m.yaml");
+      "max_features: 500\nrobust_method: magsac\nrefine_loss: huber\nmin_moving_speed_px: 0.2\nmin_moving_speed_mps: 1.5\n",
+      "m.yaml");
   const MotionOptions o = load_motion_options(node);
   EXPECT_EQ(o.max_features, 500);
   EXPECT_EQ(o.robust_method, "magsac");
   EXPECT_EQ(o.refine_loss, "huber");
   EXPECT_DOUBLE_EQ(o.min_moving_speed_px, 0.2);
+  EXPECT_DOUBLE_EQ(o.min_moving_speed_mps, 1.5);
   EXPECT_EQ(o.lk_window_px, MotionOptions{}.lk_window_px);
 }
 
@@ -46,6 +50,59 @@ TEST(MotionOptions, EstimatorRejectsInconsistentOptions) {
   o = MotionOptions{};
   o.min_inliers = 3;
   EXPECT_THROW(MotionEstimator{o}, InputError);
+}
+
+TEST(MotionOptions, GroundSpeedThresholdUsesTheScene) {
+  MotionOptions o;
+  o.min_moving_speed_px = 0.15;
+  o.min_moving_speed_mps = 3.5;  // 3.5 m/s at 0.35 m/px and 25 fps = 0.4 px/frame
+  SceneInfo scene;
+  scene.gsd_m = 0.35;
+  scene.fps = 25.0;
+  EXPECT_NEAR(MotionEstimator(o, scene).options().min_moving_speed_px, 0.4, 1e-12);
+  o.min_moving_speed_mps = 0.35;  // 0.04 px/frame: the px threshold is stricter
+  EXPECT_DOUBLE_EQ(MotionEstimator(o, scene).options().min_moving_speed_px, 0.15);
+}
+
+TEST(MotionOptions, AutomaticCellSizeHoldsMaxFeatures) {
+  MotionOptions o;
+  o.cell_size_px = 0;
+  o.max_features = 1000;
+  EXPECT_EQ(detection_cell_size(o, {1920, 1080}), 46);  // sqrt(1920 * 1080 / 1000) = 45.5
+  EXPECT_EQ(detection_cell_size(o, {800, 600}), 22);
+  o.cell_size_px = 48;
+  EXPECT_EQ(detection_cell_size(o, {800, 600}), 48);
+  EXPECT_EQ(load_motion_options(ConfigNode::load_string("cell_size_px: 0\n", "m.yaml")).cell_size_px, 0);
+  EXPECT_THROW(load_motion_options(ConfigNode::load_string("cell_size_px: 5\n", "m.yaml")), InputError);
+}
+
+TEST(GridCornerDetector, RespectsCellsDistanceAndCap) {
+  cv::Mat image(240, 320, CV_8UC1, cv::Scalar(60));
+  cv::RNG rng(5);
+  for (int i = 0; i < 300; ++i) {
+    image(cv::Rect(rng.uniform(0, 310), rng.uniform(0, 230), 6, 6)).setTo(rng.uniform(150, 255));
+  }
+  MotionOptions o;
+  o.cell_size_px = 40;
+  const auto corners = detect_missing_corners(image, {}, o);
+  ASSERT_GT(corners.size(), 20u);
+  EXPECT_LE(corners.size(), static_cast<size_t>((320 / 40) * (240 / 40)));
+  for (size_t i = 0; i < corners.size(); ++i) {
+    EXPECT_GE(corners[i].x, o.border_px);
+    EXPECT_GE(corners[i].y, o.border_px);
+    for (size_t j = i + 1; j < corners.size(); ++j) EXPECT_GE(cv::norm(corners[i] - corners[j]), o.min_distance_px);
+  }
+  // Cells that already hold a feature get none.
+  const auto again = detect_missing_corners(image, corners, o);
+  EXPECT_TRUE(again.empty());
+  o.max_features = 10;
+  EXPECT_EQ(detect_missing_corners(image, {}, o).size(), 10u);
+  // A flat, noisy image gives no corners at the default response threshold.
+  cv::Mat noise(240, 320, CV_16SC1);
+  rng.fill(noise, cv::RNG::NORMAL, 128, 2);
+  cv::Mat flat;
+  noise.convertTo(flat, CV_8UC1);
+  EXPECT_TRUE(detect_missing_corners(flat, {}, MotionOptions{}).empty());
 }
 
 }  // namespace

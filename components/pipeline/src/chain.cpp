@@ -33,6 +33,7 @@ ChainOutput Chain::process(const Frame& frame) {
   ChainOutput out;
   out.motion = layers_->motion.process(frame);
   out.segmentation = layers_->segmenter.process(frame, out.motion);
+  layers_->tracker.set_image_size(out.motion.image_width, out.motion.image_height);
   out.tracks = layers_->tracker.process(out.motion, out.segmentation);
   return out;
 }

@@ -112,8 +112,17 @@ int main(int argc, char** argv) {
   std::vector<Workload> workloads;
   for (int i = 0; i < 4; ++i) workloads.push_back(make_workload(objects, 100 + static_cast<uint64_t>(i), scene));
 
-  std::printf("1920x1080, %d objects (+%d side-by-side partners), %d frames, %d thread(s)\n\n", objects,
+  std::printf("1920x1080, %d objects (+%d side-by-side partners), %d frames, %d thread(s)\n", objects,
               (objects + 4) / 5, frames, threads);
+  {
+    // What a split deployment would ship instead of the frame.
+    seg::Segmenter segmenter(seg::SegmentationOptions{}, scene);
+    const auto rois = segmenter.required_crops(workloads[0].motion, workloads[0].frame.image.size());
+    long pixels = 0;
+    for (const auto& r : rois) pixels += r.area();
+    std::printf("crops per frame: %zu, %ld px (%.1f %% of the frame)\n\n", rois.size(), pixels,
+                100.0 * static_cast<double>(pixels) / (1920.0 * 1080.0));
+  }
   std::printf("| method | CPU median ms | CPU p95 ms | wall median ms | wall p95 ms | clusters | regions | objects matched (IoU >= 0.5) |\n"
               "|---|---|---|---|---|---|---|---|\n");
   for (auto method : {uavmot::SegmentationMethod::Clustering, uavmot::SegmentationMethod::Korn,

@@ -40,9 +40,9 @@ int segmentation_main(int argc, char** argv) {
       Node paired(participant,
                   {"segmentation", dds::kFramesTopic, dds::kMotionTopic, dds::kSegmentationTopic, dds::TopicClass::Frames,
                    dds::TopicClass::Chain, streams, node.wait_subscribers},
-                  [&](const std::string& stream, const Frame& frame, const MotionEstimate& motion) {
+                  [&](const std::string& stream, int64_t, const Frame& frame, const MotionEstimate& motion) {
                     auto& segmenter = segmenters.try_emplace(stream, options.segmentation, options.scene).first->second;
-                    return dds::to_msg(segmenter.process(frame, motion));
+                    return std::optional(dds::to_msg(segmenter.process(frame, motion)));
                   });
       return paired.run();
     };

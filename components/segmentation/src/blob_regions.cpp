@@ -72,62 +72,158 @@ double adaptive_threshold(const cv::Mat& acc, double quantile, double min_value)
   return std::max(bin / static_cast<double>(scale), min_value);
 }
 
+namespace {
+
+struct ExtractParams {
+  int closing_size_px;
+  double edge_band_px;
+  BoxFit fit;
+  int connectivity;
+  int min_pixels;
+  SplitRule split;
+};
+
+// Closes and hole-fills one labelled component and fits its box.
+Blob fit_component(const cv::Mat& acc, const cv::Mat& labels, int label, const cv::Rect& bounds, int area,
+                   const ExtractParams& p, bool& ok) {
+  ok = false;
+  const int pad = p.closing_size_px / 2 + 1;
+  // The component alone, with room for closing to grow it.
+  cv::Mat mask = cv::Mat::zeros(bounds.height + 2 * pad, bounds.width + 2 * pad, CV_8U);
+  double strength = 0.0;
+  for (int y = 0; y < bounds.height; ++y) {
+    const int* l = labels.ptr<int>(bounds.y + y) + bounds.x;
+    const float* a = acc.ptr<float>(bounds.y + y) + bounds.x;
+    uchar* m = mask.ptr<uchar>(y + pad) + pad;
+    for (int x = 0; x < bounds.width; ++x) {
+      if (l[x] == label) {
+        m[x] = 255;
+        strength += a[x];
+      }
+    }
+  }
+  if (p.closing_size_px > 1) {
+    const cv::Mat element = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(p.closing_size_px, p.closing_size_px));
+    cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, element);
+  }
+  std::vector<std::vector<cv::Point>> contours;
+  cv::findContours(mask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+  Blob blob;
+  if (contours.empty()) return blob;
+  cv::RotatedRect rect;
+  if (p.fit == BoxFit::MinAreaRect) {
+    // Closing may leave pieces; the outline of all of them is the blob.
+    std::vector<cv::Point> outline;
+    for (const auto& c : contours) outline.insert(outline.end(), c.begin(), c.end());
+    rect = cv::minAreaRect(outline);
+    rect.size += cv::Size2f(1.0f, 1.0f);  // pixel centres -> the pixels' extent
+  } else {
+    mask.setTo(0);
+    cv::drawContours(mask, contours, -1, cv::Scalar(255), cv::FILLED);  // fill holes
+    rect = moment_box(mask);
+  }
+  rect.center += cv::Point2f(static_cast<float>(bounds.x - pad), static_cast<float>(bounds.y - pad));
+  const float shrink = static_cast<float>(2.0 * p.edge_band_px);
+  rect.size.width = std::max(1.0f, rect.size.width - shrink);
+  rect.size.height = std::max(1.0f, rect.size.height - shrink);
+  blob.box = oriented_box_from_rotated_rect(rect);
+  blob.pixel_count = area;
+  blob.mean_strength = strength / area;
+  ok = true;
+  return blob;
+}
+
+bool too_big(const OrientedBox& box, const SplitRule& rule) {
+  return (rule.max_length_px > 0.0 && box.length > rule.max_length_px) ||
+         (rule.max_width_px > 0.0 && box.width > rule.max_width_px);
+}
+
+void extract(const cv::Mat& acc, const cv::Mat& binary, double threshold, const ExtractParams& p, bool may_split,
+             std::vector<Blob>& blobs) {
+  cv::Mat labels, stats, centroids;
+  const int count = cv::connectedComponentsWithStats(binary, labels, stats, centroids, p.connectivity, CV_32S);
+  for (int label = 1; label < count; ++label) {
+    const int area = stats.at<int>(label, cv::CC_STAT_AREA);
+    if (area < p.min_pixels) continue;
+    const cv::Rect bounds(stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
+                          stats.at<int>(label, cv::CC_STAT_WIDTH), stats.at<int>(label, cv::CC_STAT_HEIGHT));
+    bool ok = false;
+    const Blob blob = fit_component(acc, labels, label, bounds, area, p, ok);
+    if (!ok) continue;
+    if (may_split && too_big(blob.box, p.split)) {
+      // Larger than one vehicle: raise the threshold on this component alone until it falls
+      // apart into several sizeable parts (the weak pixels between two cars go first).
+      const cv::Mat component = labels(bounds) == label;
+      double peak = 0.0;
+      cv::minMaxLoc(acc(bounds), nullptr, &peak, nullptr, nullptr, component);
+      bool split = false;
+      for (int level = 1; level <= p.split.levels && !split; ++level) {
+        const double raised = threshold + (peak - threshold) * level / (p.split.levels + 1.0);
+        cv::Mat part = cv::Mat::zeros(acc.size(), CV_8U);
+        part(bounds).setTo(255, component & (acc(bounds) >= raised));
+        cv::Mat part_labels, part_stats, part_centroids;
+        const int parts = cv::connectedComponentsWithStats(part, part_labels, part_stats, part_centroids, p.connectivity, CV_32S);
+        int sizeable = 0;
+        for (int i = 1; i < parts; ++i) sizeable += part_stats.at<int>(i, cv::CC_STAT_AREA) >= p.split.min_part_pixels ? 1 : 0;
+        if (sizeable < 2) continue;
+        ExtractParams parts_params = p;
+        parts_params.min_pixels = std::max(p.min_pixels, p.split.min_part_pixels);
+        extract(acc, part, raised, parts_params, false, blobs);
+        split = true;
+      }
+      if (split) continue;
+    }
+    blobs.push_back(blob);
+  }
+}
+
+}  // namespace
+
 std::vector<Blob> extract_blobs(const cv::Mat& acc, double threshold, int closing_size_px, double edge_band_px,
-                                BoxFit fit, int connectivity, int min_pixels) {
+                                BoxFit fit, int connectivity, int min_pixels, const SplitRule& split) {
   if (connectivity != 4 && connectivity != 8) throw InvalidArgument("extract_blobs: connectivity must be 4 or 8");
   std::vector<Blob> blobs;
   if (acc.empty()) return blobs;
-  cv::Mat binary = (acc >= std::max(threshold, 1e-6));
-  cv::Mat labels, stats, centroids;
-  const int count = cv::connectedComponentsWithStats(binary, labels, stats, centroids, connectivity, CV_32S);
-  const int pad = closing_size_px / 2 + 1;
-  const cv::Mat element = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(closing_size_px, closing_size_px));
-  for (int label = 1; label < count; ++label) {
-    const int area = stats.at<int>(label, cv::CC_STAT_AREA);
-    if (area < min_pixels) continue;
-    const cv::Rect bounds(stats.at<int>(label, cv::CC_STAT_LEFT), stats.at<int>(label, cv::CC_STAT_TOP),
-                          stats.at<int>(label, cv::CC_STAT_WIDTH), stats.at<int>(label, cv::CC_STAT_HEIGHT));
-    // The component alone, with room for closing to grow it.
-    cv::Mat mask = cv::Mat::zeros(bounds.height + 2 * pad, bounds.width + 2 * pad, CV_8U);
-    double strength = 0.0;
-    for (int y = 0; y < bounds.height; ++y) {
-      const int* l = labels.ptr<int>(bounds.y + y) + bounds.x;
-      const float* a = acc.ptr<float>(bounds.y + y) + bounds.x;
-      uchar* m = mask.ptr<uchar>(y + pad) + pad;
-      for (int x = 0; x < bounds.width; ++x) {
-        if (l[x] == label) {
-          m[x] = 255;
-          strength += a[x];
-        }
-      }
-    }
-    if (closing_size_px > 1) cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, element);
-    std::vector<std::vector<cv::Point>> contours;
-    cv::findContours(mask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
-    if (contours.empty()) continue;
-    cv::RotatedRect rect;
-    if (fit == BoxFit::MinAreaRect) {
-      // Closing may leave pieces; the outline of all of them is the blob.
-      std::vector<cv::Point> outline;
-      for (const auto& c : contours) outline.insert(outline.end(), c.begin(), c.end());
-      rect = cv::minAreaRect(outline);
-      rect.size += cv::Size2f(1.0f, 1.0f);  // pixel centres -> the pixels' extent
-    } else {
-      mask.setTo(0);
-      cv::drawContours(mask, contours, -1, cv::Scalar(255), cv::FILLED);  // fill holes
-      rect = moment_box(mask);
-    }
-    rect.center += cv::Point2f(static_cast<float>(bounds.x - pad), static_cast<float>(bounds.y - pad));
-    const float shrink = static_cast<float>(2.0 * edge_band_px);
-    rect.size.width = std::max(1.0f, rect.size.width - shrink);
-    rect.size.height = std::max(1.0f, rect.size.height - shrink);
-    Blob blob;
-    blob.box = oriented_box_from_rotated_rect(rect);
-    blob.pixel_count = area;
-    blob.mean_strength = strength / area;
-    blobs.push_back(blob);
-  }
+  const cv::Mat binary = (acc >= std::max(threshold, 1e-6));
+  extract(acc, binary, threshold, {closing_size_px, edge_band_px, fit, connectivity, min_pixels, split}, true, blobs);
   return blobs;
+}
+
+std::vector<GroupedBlob> group_vehicle_parts(const std::vector<Blob>& blobs, double max_length_px, double max_width_px,
+                                             double touch_px) {
+  std::vector<size_t> order(blobs.size());
+  for (size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::stable_sort(order.begin(), order.end(),
+                   [&](size_t a, size_t b) { return blobs[a].pixel_count > blobs[b].pixel_count; });
+  const bool enabled = max_length_px > 0.0 && max_width_px > 0.0;
+  std::vector<GroupedBlob> groups;
+  std::vector<std::vector<cv::Point2f>> corners;
+  for (size_t index : order) {
+    const Blob& blob = blobs[index];
+    std::vector<cv::Point2f> own;
+    for (const auto& c : box_corners(blob.box)) own.emplace_back(static_cast<float>(c.x), static_cast<float>(c.y));
+    OrientedBox touching = blob.box;
+    touching.length += 2.0 * touch_px;
+    touching.width += 2.0 * touch_px;
+    bool joined = false;
+    for (size_t g = 0; enabled && g < groups.size() && !joined; ++g) {
+      if (intersection_area(touching, groups[g].box) <= 0.0) continue;
+      std::vector<cv::Point2f> all = corners[g];
+      all.insert(all.end(), own.begin(), own.end());
+      const OrientedBox combined = oriented_box_from_rotated_rect(cv::minAreaRect(all));
+      if (combined.length > max_length_px || combined.width > max_width_px) continue;
+      groups[g].box = combined;
+      groups[g].pixel_count += blob.pixel_count;
+      ++groups[g].parts;
+      corners[g] = std::move(all);
+      joined = true;
+    }
+    if (!joined) {
+      groups.push_back({blob.box, blob.pixel_count, 1});
+      corners.push_back(std::move(own));
+    }
+  }
+  return groups;
 }
 
 }  // namespace uavmot::segmentation

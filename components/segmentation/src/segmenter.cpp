@@ -55,12 +55,14 @@ double covered_fraction(const OrientedBox& candidate, const OrientedBox& kept) {
 std::optional<Region> Segmenter::uncovered_features_region(const FeatureCluster& cluster,
                                                            const std::vector<cv::Point2d>& feature_positions,
                                                            const std::vector<Region>& regions) const {
+  // Features within half a vehicle width of a region are its own (corners on the outline).
+  const double margin = options_.regions.support_margin_px + 0.5 * scene_.metres_to_px(scene_.vehicle_width_m);
   std::vector<cv::Point2d> uncovered;
   for (const auto& p : feature_positions) {
     const bool covered = std::any_of(regions.begin(), regions.end(), [&](const Region& r) {
       OrientedBox grown = r.box;
-      grown.length += 2.0 * options_.regions.support_margin_px;
-      grown.width += 2.0 * options_.regions.support_margin_px;
+      grown.length += 2.0 * margin;
+      grown.width += 2.0 * margin;
       return box_contains(grown, p);
     });
     if (!covered) uncovered.push_back(p);
@@ -160,11 +162,17 @@ std::vector<Region> Segmenter::segment_window(const cv::Mat& gray, const cv::Rec
 
   const double vehicle_length = scene_.metres_to_px(scene_.vehicle_length_m);
   const double vehicle_width = scene_.metres_to_px(scene_.vehicle_width_m);
+  SplitRule split;
+  split.max_length_px = r.split_length_factor * vehicle_length;
+  split.max_width_px = r.split_width_factor * vehicle_width;
   std::vector<Region> regions;
-  for (Blob& blob : extract_blobs(acc, threshold, r.closing_size_px, r.edge_band_px, r.box_fit, connectivity)) {
-    blob.box.cx += window.x;
-    blob.box.cy += window.y;
-    const OrientedBox& box = blob.box;
+  const std::vector<Blob> blobs =
+      extract_blobs(acc, threshold, r.closing_size_px, r.edge_band_px, r.box_fit, connectivity, 3, split);
+  for (GroupedBlob& group : group_vehicle_parts(blobs, r.group_length_factor * vehicle_length,
+                                                r.group_width_factor * vehicle_width)) {
+    group.box.cx += window.x;
+    group.box.cy += window.y;
+    const OrientedBox& box = group.box;
     if (box.length < r.min_length_factor * vehicle_length || box.length > r.max_length_factor * vehicle_length ||
         box.width < r.min_width_factor * vehicle_width || box.width > r.max_width_factor * vehicle_width) {
       continue;

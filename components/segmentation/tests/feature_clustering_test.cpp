@@ -128,10 +128,13 @@ TEST(FeatureClustering, SkipsStationaryNonFiniteAndOutsideFeatures) {
 TEST(FeatureClustering, DropsClustersWithTooFewFeatures) {
   auto features = group(1, 50, 50, 1.0, 0.0);
   features.push_back(feature(99, 300, 300, 1.0, 0.0));  // lone feature
+  ClusteringOptions options;
+  options.min_features = 2;
   ClusteringStats stats;
-  const auto clusters = cluster_moving_features(features, {}, scene_at(0.35), cv::Size(640, 480), &stats);
+  const auto clusters = cluster_moving_features(features, options, scene_at(0.35), cv::Size(640, 480), &stats);
   EXPECT_EQ(clusters.size(), 1u);
   EXPECT_EQ(stats.dropped_small_clusters, 1u);
+  EXPECT_EQ(cluster_moving_features(features, {}, scene_at(0.35), cv::Size(640, 480)).size(), 2u);  // default 1
 }
 
 TEST(FeatureClustering, ResultDoesNotDependOnFeatureOrder) {

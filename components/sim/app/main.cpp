@@ -3,6 +3,7 @@
 #include <iostream>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -31,12 +32,16 @@ int main(int argc, char** argv) {
   app.add_option("--out", out_dir, "output folder (created)");
   app.add_option("--frames", frames, "override the number of frames")->check(CLI::Range(1, 100000));
   app.add_flag("-q,--quiet", quiet, "no progress on stderr");
+  bool print_scenario = false;
+  app.add_flag("--print-scenario", print_scenario, "print the resolved scenario as YAML and exit");
   std::string preview_file;
   int preview_frame = 1;
   double preview_scale = 1.0;
   app.add_option("--preview", preview_file, "instead of a sequence, write one frame with its ground truth drawn (PNG)");
   app.add_option("--preview-frame", preview_frame, "frame for --preview (1-based)")->check(CLI::PositiveNumber);
   app.add_option("--preview-scale", preview_scale, "enlargement for --preview")->check(CLI::Range(0.1, 8.0));
+  std::vector<int> preview_crop;
+  app.add_option("--preview-crop", preview_crop, "part of the frame for --preview: X Y WIDTH HEIGHT")->expected(4);
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -52,7 +57,7 @@ int main(int argc, char** argv) {
   }
   try {
     if (preset.empty() && scenario_file.empty()) throw uavmot::InputError("give --preset NAME or --scenario FILE.yaml");
-    if (out_dir.empty() && preview_file.empty()) throw uavmot::InputError("give --out DIR");
+    if (out_dir.empty() && preview_file.empty() && !print_scenario) throw uavmot::InputError("give --out DIR");
     uavmot::sim::Scenario scenario;
     try {
       scenario = preset.empty() ? uavmot::sim::load_scenario_file(scenario_file) : uavmot::sim::preset_scenario(preset);
@@ -61,6 +66,10 @@ int main(int argc, char** argv) {
     }
     if (frames) scenario.frames = *frames;
     uavmot::sim::validate_scenario(scenario);
+    if (print_scenario) {
+      std::cout << uavmot::sim::scenario_to_yaml(scenario);
+      return 0;
+    }
     std::cerr << "uavmot-sim: scenario '" << scenario.name << "', " << scenario.frames << " frames "
               << scenario.camera.width << "x" << scenario.camera.height << ", seed " << seed << " -> " << out_dir << "\n";
     if (!preview_file.empty()) {
@@ -72,6 +81,7 @@ int main(int argc, char** argv) {
       }
       uavmot::sim::PreviewOptions options;
       options.scale = preview_scale;
+      if (preview_crop.size() == 4) options.crop = cv::Rect(preview_crop[0], preview_crop[1], preview_crop[2], preview_crop[3]);
       if (!cv::imwrite(preview_file, uavmot::sim::draw_ground_truth(frame, options)))
         throw uavmot::InputError("cannot write '" + preview_file + "'");
       return 0;

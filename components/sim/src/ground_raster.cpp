@@ -14,7 +14,6 @@
 namespace uavmot::sim::detail {
 namespace {
 namespace fs = std::filesystem;
-constexpr double kPi = 3.14159265358979323846;
 
 std::vector<std::string> list_images(const std::string& dir) {
   std::error_code ec;
@@ -247,24 +246,27 @@ void paint_roads(cv::Mat& raster, const GroundRaster& geo, const Scenario& scena
       }
     }
   }
-  (void)kPi;
 }
 
 }  // namespace
+
+cv::Size checked_raster_size(const Scenario& scenario, cv::Rect2d region, double raster_gsd) {
+  const double width = std::ceil(region.width / raster_gsd) + 1.0, height = std::ceil(region.height / raster_gsd) + 1.0;
+  const double megapixels = width * height / 1e6;
+  if (!(megapixels <= scenario.ground.raster_max_megapixels))
+    throw InputError("scenario '" + scenario.name + "' needs a ground raster of " + std::to_string(static_cast<int64_t>(width)) +
+                     " x " + std::to_string(static_cast<int64_t>(height)) + " px (" + std::to_string(static_cast<int64_t>(megapixels)) +
+                     " MP), more than ground.raster_max_megapixels = " + std::to_string(scenario.ground.raster_max_megapixels) +
+                     "; use fewer frames or a slower camera");
+  return {static_cast<int>(width), static_cast<int>(height)};
+}
 
 GroundRaster build_ground_raster(const Scenario& scenario, const RoadNetwork& network, cv::Rect2d region, double raster_gsd,
                                  uint64_t seed) {
   GroundRaster ground;
   ground.gsd_m = raster_gsd;
   ground.origin_m = {region.x, region.y};
-  const cv::Size size(static_cast<int>(std::ceil(region.width / raster_gsd)) + 1,
-                      static_cast<int>(std::ceil(region.height / raster_gsd)) + 1);
-  const double megapixels = static_cast<double>(size.width) * size.height / 1e6;
-  if (megapixels > scenario.ground.raster_max_megapixels)
-    throw InputError("scenario '" + scenario.name + "' needs a ground raster of " + std::to_string(size.width) + " x " +
-                     std::to_string(size.height) + " px (" + std::to_string(static_cast<int>(megapixels)) +
-                     " MP), more than ground.raster_max_megapixels = " +
-                     std::to_string(scenario.ground.raster_max_megapixels) + "; shorten frames or slow the camera");
+  const cv::Size size = checked_raster_size(scenario, region, raster_gsd);
   // The mosaic at the texture's resolution, then resampled to the raster.
   const double texture_gsd = scenario.ground.texture_gsd_m;
   const cv::Size texture_size(std::max(2, static_cast<int>(std::ceil(region.width / texture_gsd)) + 2),
@@ -278,6 +280,8 @@ GroundRaster build_ground_raster(const Scenario& scenario, const RoadNetwork& ne
   cv::Mat raster;
   const cv::Matx23d mosaic_from_raster(raster_gsd / texture_gsd, 0, 0, 0, raster_gsd / texture_gsd, 0);
   cv::warpAffine(mosaic, raster, mosaic_from_raster, size, cv::INTER_CUBIC | cv::WARP_INVERSE_MAP, cv::BORDER_REFLECT);
+  // Upsampled imagery is smooth; real ground at this resolution has grain (gravel, grass, roof texture).
+  if (scenario.ground.detail_noise > 0.0) raster += smooth_noise(size, 1.2, scenario.ground.detail_noise, seed ^ 0xD37A11ULL);
   paint_roads(raster, ground, scenario, network, seed);
   raster.convertTo(ground.image, CV_8U);
   return ground;

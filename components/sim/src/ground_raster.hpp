@@ -23,6 +23,10 @@ struct GroundRaster {
   }
 };
 
+// Size of the raster covering region_m; throws InputError (naming ground.raster_max_megapixels)
+// when it would be too large.
+cv::Size checked_raster_size(const Scenario& scenario, cv::Rect2d region_m, double raster_gsd_m);
+
 // Throws InputError when the texture folder is missing or holds no readable image, or when the
 // raster would exceed ground.raster_max_megapixels.
 GroundRaster build_ground_raster(const Scenario& scenario, const RoadNetwork& network, cv::Rect2d region_m,

@@ -191,18 +191,20 @@ RoadNetwork make_road_network(const Scenario& scenario, cv::Point2d centre, doub
 
   // A parking lot beside the main road, with stalls perpendicular to it.
   if (scenario.traffic.parked_vehicles > 0) {
-    RoadNetwork::Lot lot;
-    const double side = uni(rng) < 0.5 ? 1.0 : -1.0;
-    lot.along_m = 40.0;
-    lot.across_m = 16.0;
-    lot.angle_rad = main_angle;
-    lot.centre_m = main_through + unit(main_angle) * ((uni(rng) - 0.5) * 0.6 * view_radius) +
-                   unit(main_angle + kPi / 2.0) * side * (main.half_width() + 2.0 + lot.across_m / 2.0);
-    // Keep the lot off other roads.
-    bool clear = true;
-    for (size_t r = 1; r < net.roads.size(); ++r)
-      if (distance_to_road(net.roads[r], lot.centre_m) < net.roads[r].half_width() + 25.0) clear = false;
-    if (clear) {
+    // Try places along both sides of the main road until one is clear of the other roads.
+    for (int attempt = 0; attempt < 40; ++attempt) {
+      RoadNetwork::Lot lot;
+      const double side = uni(rng) < 0.5 ? 1.0 : -1.0;
+      lot.along_m = 40.0;
+      lot.across_m = 16.0;
+      lot.angle_rad = main_angle;
+      lot.centre_m = main_through + unit(main_angle) * ((uni(rng) - 0.5) * 1.2 * view_radius) +
+                     unit(main_angle + kPi / 2.0) * side * (main.half_width() + 2.0 + lot.across_m / 2.0);
+      if (cv::norm(lot.centre_m - centre) > 0.7 * view_radius) continue;
+      bool clear = true;
+      for (size_t r = 1; r < net.roads.size(); ++r)
+        if (distance_to_road(net.roads[r], lot.centre_m) < net.roads[r].half_width() + 28.0) clear = false;
+      if (!clear) continue;
       net.lots.push_back(lot);
       const cv::Point2d along = unit(lot.angle_rad), across = unit(lot.angle_rad + kPi / 2.0);
       for (int row = 0; row < 2; ++row) {
@@ -213,6 +215,7 @@ RoadNetwork make_road_network(const Scenario& scenario, cv::Point2d centre, doub
           net.parking_spots.push_back(spot);
         }
       }
+      break;
     }
     // Parallel parking on the strips of side roads, within the view.
     for (size_t r = 1; r < net.roads.size(); ++r) {

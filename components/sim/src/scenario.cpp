@@ -4,6 +4,8 @@
 #include <optional>
 #include <sstream>
 
+#include <fmt/format.h>
+
 #include "scenario_fields.hpp"
 #include "uavmot/core/error.hpp"
 
@@ -73,10 +75,8 @@ class YamlWriter : public detail::FieldVisitor {
   void end_section() override { indent_.clear(); }
   void field(const char* key, int& value, int, int) override { out_ << indent_ << key << ": " << value << "\n"; }
   void field(const char* key, double& value, double, double) override {
-    std::ostringstream number;
-    number.precision(17);
-    number << value;
-    out_ << indent_ << key << ": " << number.str() << "\n";
+    // Shortest text that reads back to the same double.
+    out_ << indent_ << key << ": " << fmt::format("{}", value) << "\n";
   }
   void field(const char* key, bool& value) override { out_ << indent_ << key << ": " << (value ? "true" : "false") << "\n"; }
   void field(const char* key, std::string& value) override { out_ << indent_ << key << ": \"" << value << "\"\n"; }
@@ -109,9 +109,9 @@ Scenario preset_scenario(const std::string& name) {
   }
   if (name == "lowsnr") {
     // Dim, noisy, low-contrast imagery: many dark cars on dark asphalt.
-    s.sensor.noise_sigma = 7.0;
+    s.sensor.noise_sigma = 6.0;
     s.sensor.blur_sigma_px = 1.0;
-    s.sensor.contrast = 0.55;
+    s.sensor.contrast = 0.6;
     s.sensor.brightness_offset = -20.0;
     s.sensor.gain_drift = 0.08;
     s.sensor.jpeg_quality = 70;
@@ -134,7 +134,7 @@ Scenario preset_scenario(const std::string& name) {
     s.roads.main_road_angle_deg = 0.0;
     s.roads.cross_roads = 3;
     s.roads.curved_roads = 1;
-    s.traffic.flow_per_lane_vph = 900.0;
+    s.traffic.flow_per_lane_vph = 1200.0;
     s.traffic.parked_vehicles = 30;
     return s;
   }
@@ -158,9 +158,7 @@ Scenario preset_scenario(const std::string& name) {
     s.traffic.speed_max_mps = 0.6 * 0.35 * 25.0;
     s.traffic.side_road_speed_factor = 1.0;
     s.traffic.flow_per_lane_vph = 700.0;
-    s.traffic.stop_red_s = 0.0;
     s.traffic.moving_threshold_mps = 0.3;
-    s.traffic.warmup_s = 200.0;
     return s;
   }
   if (name == "small") {

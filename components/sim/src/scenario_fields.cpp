@@ -30,6 +30,7 @@ void visit_scenario(Scenario& s, FieldVisitor& v) {
   v.field("texture_dir", g.texture_dir);
   v.field("texture_gsd_m", g.texture_gsd_m, 0.01, 20.0);
   v.field("texture_contrast", g.texture_contrast, 0.0, 5.0);
+  v.field("detail_noise", g.detail_noise, 0.0, 50.0);
   v.field("raster_max_megapixels", g.raster_max_megapixels, 1, 2000);
   v.end_section();
 

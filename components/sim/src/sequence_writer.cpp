@@ -69,7 +69,7 @@ WriteSummary write_sequence(const Scenario& scenario, uint64_t seed, const std::
     if (max_id > 65535) throw InputError("more than 65535 vehicles: the 16-bit id masks cannot hold them");
     frame.object_id_mask.convertTo(mask16, CV_16U);
     const std::string mask_path = (root / "gt" / "masks" / frame_name(frame.index, ".png")).string();
-    if (!cv::imwrite(mask_path, mask16, {cv::IMWRITE_PNG_COMPRESSION, 1})) throw InputError("cannot write '" + mask_path + "'");
+    if (!cv::imwrite(mask_path, mask16, {cv::IMWRITE_PNG_COMPRESSION, 1, cv::IMWRITE_PNG_STRATEGY, cv::IMWRITE_PNG_STRATEGY_RLE})) throw InputError("cannot write '" + mask_path + "'");
 
     homographies << frame.index;
     for (int i = 0; i < 9; ++i) homographies << fmt::format(",{:.17g}", frame.homography_from_previous.val[i]);

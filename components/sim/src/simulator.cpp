@@ -61,6 +61,7 @@ ViewArea view_area(const detail::CameraPath& camera, const Scenario& s) {
   area.region_m = cv::Rect2d(x0 - margin, y0 - margin, x1 - x0 + 2 * margin, y1 - y0 + 2 * margin);
   area.centre_m = {(x0 + x1) / 2.0, (y0 + y1) / 2.0};
   for (const auto& c : corners) area.radius_m = std::max(area.radius_m, cv::norm(c - area.centre_m));
+  detail::checked_raster_size(s, area.region_m, area.min_gsd_m);  // fail early, before building roads
   return area;
 }
 

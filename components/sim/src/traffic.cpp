@@ -34,6 +34,36 @@ Traffic::Traffic(const Scenario& scenario, const RoadNetwork& network, cv::Point
       }
     }
   }
+  populate();
+}
+
+void Traffic::populate() {
+  // Roads start filled at the mean density (flow / speed), so long roads need no long warm-up.
+  std::uniform_real_distribution<double> uni(0.0, 1.0);
+  const TrafficParams& t = scenario_.traffic;
+  for (const LaneState& lane : lanes_) {
+    const Road& road = network_.roads[lane.key.road];
+    const double factor = road.main ? 1.0 : t.side_road_speed_factor;
+    const double flow = t.flow_per_lane_vph / 3600.0 * (road.main ? 1.0 : 0.6);
+    const double mean_speed = std::max(0.5, 0.5 * (t.speed_min_mps + t.speed_max_mps) * factor);
+    if (flow <= 0.0) continue;
+    std::exponential_distribution<double> gap(flow / mean_speed);
+    double last_front = road.length();  // rear end of the vehicle placed ahead
+    for (double s = road.length() - 10.0 - gap(rng_); s > 10.0; s -= gap(rng_)) {
+      Vehicle v = make_vehicle(true);
+      v.desired_speed_mps = (t.speed_min_mps + (t.speed_max_mps - t.speed_min_mps) * uni(rng_)) * factor;
+      v.speed_mps = v.desired_speed_mps;
+      v.road = lane.key.road;
+      v.direction = lane.key.direction;
+      v.lane = lane.key.lane;
+      v.lateral_m = lane_offset(road, v.lane);
+      v.s_m = s;
+      if (s + v.length_m / 2.0 + kMinGap + kHeadway * v.speed_mps > last_front) continue;
+      last_front = s - v.length_m / 2.0;
+      update_pose(v);
+      vehicles_.push_back(v);
+    }
+  }
 }
 
 Vehicle Traffic::make_vehicle(bool dark_allowed) {
@@ -109,54 +139,58 @@ double Traffic::road_s(const Vehicle& v) const {
   return v.direction > 0 ? v.s_m : road.length() - v.s_m;
 }
 
-bool Traffic::red_light(const Vehicle& v) const {
+bool Traffic::red_light(bool major) const {
   const TrafficParams& t = scenario_.traffic;
   if (t.stop_red_s <= 0.0) return false;
   const double phase = std::fmod(time_, t.stop_period_s);
-  const bool main_red = phase < t.stop_red_s;
-  if (network_.roads[v.road].main) return main_red;
-  // Side roads get green only inside the main road's red phase, with clearance at both ends.
-  const double clearance = std::min(1.5, 0.2 * t.stop_red_s);
+  if (major) return phase < t.stop_red_s;
+  // The minor road gets green only inside the major road's red phase, with clearance at both ends.
+  const double clearance = std::min(3.0, 0.25 * t.stop_red_s);
   return !(phase >= clearance && phase < t.stop_red_s - clearance);
 }
 
 double Traffic::stop_line_gap(const Vehicle& v) const {
-  if (!red_light(v)) return 1e300;
   const Road& road = network_.roads[v.road];
   double best = 1e300;
+  // Every crossing has a signal; the road listed first (the main road where it takes part) is the major one.
   for (const Crossing& x : network_.crossings) {
-    if (x.road_a != 0 && x.road_b != 0) continue;  // only crossings with the main road have signals
     double s_cross = 0.0;
     int other = -1;
+    bool major = false;
     if (x.road_a == v.road) {
       s_cross = x.s_a;
       other = x.road_b;
+      major = true;
     } else if (x.road_b == v.road) {
       s_cross = x.s_b;
       other = x.road_a;
     } else {
       continue;
     }
+    // Stop for red, and also while a vehicle of the other road is still inside the junction.
+    const size_t c = static_cast<size_t>(&x - network_.crossings.data());
+    const bool other_inside = junction_occupied_[c][major ? 1 : 0];
+    if (!red_light(major) && !other_inside) continue;
     const double lane_s = v.direction > 0 ? s_cross : road.length() - s_cross;
     const double stop = lane_s - network_.roads[other].half_width() - 2.5;
     const double gap = stop - (v.s_m + v.length_m / 2.0);
     // A vehicle that can no longer stop comfortably drives through.
     const double braking = v.speed_mps * v.speed_mps / (2.0 * 4.0);
-    if (gap > -0.5 && gap + 0.5 >= braking) best = std::min(best, std::max(0.0, gap));
+    if (gap > -0.5 && (gap + 0.5 >= braking || other_inside)) best = std::min(best, std::max(0.0, gap));
   }
   return best;
 }
 
-double Traffic::gap_to_leader(const Vehicle& v, int lane, double& leader_speed) const {
-  const Road& road = network_.roads[v.road];
-  const double lane_lat = lane_offset(road, lane);
+bool Traffic::occupies(const Vehicle& o, int lane) const {
+  const Road& road = network_.roads[o.road];
+  return o.lane == lane || std::abs(o.lateral_m - lane_offset(road, lane)) < 0.9 * road.lane_width_m;
+}
+
+double Traffic::spawn_gap(const Vehicle& v, double& leader_speed) const {
   double best = 1e300;
   leader_speed = 0.0;
   for (const Vehicle& o : vehicles_) {
-    if (o.parked || o.internal_id == v.internal_id || o.road != v.road || o.direction != v.direction) continue;
-    if (o.s_m <= v.s_m) continue;
-    const bool occupies = o.lane == lane || std::abs(o.lateral_m - lane_lat) < 0.9 * road.lane_width_m;
-    if (!occupies) continue;
+    if (o.parked || o.road != v.road || o.direction != v.direction || o.s_m <= v.s_m || !occupies(o, v.lane)) continue;
     const double gap = o.s_m - v.s_m - (o.length_m + v.length_m) / 2.0;
     if (gap < best) {
       best = gap;
@@ -166,16 +200,61 @@ double Traffic::gap_to_leader(const Vehicle& v, int lane, double& leader_speed) 
   return best;
 }
 
-double Traffic::gap_to_follower(const Vehicle& v, int lane) const {
-  const Road& road = network_.roads[v.road];
-  const double lane_lat = lane_offset(road, lane);
+void Traffic::mark_occupied_junctions() {
+  junction_occupied_.assign(network_.crossings.size(), {false, false});
+  for (const Vehicle& u : vehicles_) {
+    if (u.parked) continue;
+    for (size_t c = 0; c < network_.crossings.size(); ++c) {
+      const Crossing& x = network_.crossings[c];
+      if (u.road != x.road_a && u.road != x.road_b) continue;
+      const bool on_a = u.road == x.road_a;
+      const double s_cross = on_a ? x.s_a : x.s_b;
+      const double other_half = network_.roads[on_a ? x.road_b : x.road_a].half_width();
+      if (std::abs(road_s(u) - s_cross) < other_half + u.length_m / 2.0 + 1.5) junction_occupied_[c][on_a ? 0 : 1] = true;
+    }
+  }
+}
+
+void Traffic::build_index() {
+  groups_.clear();
+  rank_.assign(vehicles_.size(), 0);
+  for (size_t i = 0; i < vehicles_.size(); ++i)
+    if (!vehicles_[i].parked) groups_[{vehicles_[i].road, vehicles_[i].direction}].push_back(i);
+  for (auto& [key, members] : groups_) {
+    std::sort(members.begin(), members.end(), [&](size_t x, size_t y) {
+      const Vehicle& a = vehicles_[x];
+      const Vehicle& b = vehicles_[y];
+      return a.s_m != b.s_m ? a.s_m < b.s_m : a.internal_id < b.internal_id;
+    });
+    for (size_t k = 0; k < members.size(); ++k) rank_[members[k]] = k;
+  }
+}
+
+double Traffic::gap_to_leader(size_t i, int lane, double& leader_speed) const {
+  const Vehicle& v = vehicles_[i];
+  const auto& members = groups_.at({v.road, v.direction});
+  leader_speed = 0.0;
+  // Sorted by position: the first vehicle ahead that occupies the lane is the leader.
+  for (size_t k = rank_[i] + 1; k < members.size(); ++k) {
+    const Vehicle& o = vehicles_[members[k]];
+    if (o.s_m <= v.s_m || !occupies(o, lane)) continue;
+    leader_speed = o.speed_mps;
+    return o.s_m - v.s_m - (o.length_m + v.length_m) / 2.0;
+  }
+  return 1e300;
+}
+
+double Traffic::gap_to_follower(size_t i, int lane) const {
+  const Vehicle& v = vehicles_[i];
+  const auto& members = groups_.at({v.road, v.direction});
   double best = 1e300;
-  for (const Vehicle& o : vehicles_) {
-    if (o.parked || o.internal_id == v.internal_id || o.road != v.road || o.direction != v.direction) continue;
-    if (o.s_m > v.s_m) continue;
-    const bool occupies = o.lane == lane || std::abs(o.lateral_m - lane_lat) < 0.9 * road.lane_width_m;
-    if (!occupies) continue;
-    best = std::min(best, v.s_m - o.s_m - (o.length_m + v.length_m) / 2.0);
+  // Vehicles level with this one (same position, sorted after it) count as followers too.
+  for (size_t k = rank_[i] + 1; k < members.size() && vehicles_[members[k]].s_m == v.s_m; ++k)
+    if (occupies(vehicles_[members[k]], lane)) best = std::min(best, -(vehicles_[members[k]].length_m + v.length_m) / 2.0);
+  for (size_t k = rank_[i]; k-- > 0;) {
+    const Vehicle& o = vehicles_[members[k]];
+    if (!occupies(o, lane)) continue;
+    return std::min(best, v.s_m - o.s_m - (o.length_m + v.length_m) / 2.0);
   }
   return best;
 }
@@ -192,7 +271,7 @@ void Traffic::try_spawn(LaneState& lane) {
   v.s_m = v.length_m / 2.0;
   v.desired_speed_mps = spawn.desired_speed_mps;
   double leader_speed = 0.0;
-  const double gap = gap_to_leader(v, v.lane, leader_speed);
+  const double gap = spawn_gap(v, leader_speed);
   const double headway = spawn.convoy_member ? 0.9 : kHeadway;
   if (gap < kMinGap + headway * std::min(v.desired_speed_mps, leader_speed + 2.0)) {
     --next_id_;  // not spawned yet: keep ids contiguous
@@ -252,6 +331,8 @@ void Traffic::step(double dt) {
   for (LaneState& lane : lanes_) try_spawn(lane);
 
   // Accelerations from the state at the start of the step (simultaneous update).
+  build_index();
+  mark_occupied_junctions();
   std::vector<double> accel(vehicles_.size(), 0.0);
   std::vector<int> start_change(vehicles_.size(), -1);
   for (size_t i = 0; i < vehicles_.size(); ++i) {
@@ -259,7 +340,7 @@ void Traffic::step(double dt) {
     if (v.parked) continue;
     const Road& road = network_.roads[v.road];
     double leader_speed = 0.0;
-    double gap = gap_to_leader(v, v.lane, leader_speed);
+    double gap = gap_to_leader(i, v.lane, leader_speed);
     const double stop_gap = stop_line_gap(v);
     if (stop_gap < gap) {
       gap = stop_gap;
@@ -280,15 +361,22 @@ void Traffic::step(double dt) {
       const double p = t.overtake_eagerness * dt;
       if (v.lane + 1 < road.lanes_per_direction && gap < 45.0 && leader_speed < v.desired_speed_mps - 1.0) {
         double other_speed = 0.0;
-        const double ahead = gap_to_leader(v, v.lane + 1, other_speed);
-        const double behind = gap_to_follower(v, v.lane + 1);
+        const double ahead = gap_to_leader(i, v.lane + 1, other_speed);
+        const double behind = gap_to_follower(i, v.lane + 1);
         if (ahead > gap + 10.0 && behind > 8.0 + v.speed_mps && uni(rng_) < p) start_change[i] = v.lane + 1;
       } else if (v.lane > 0) {
         double other_speed = 0.0;
-        const double ahead = gap_to_leader(v, v.lane - 1, other_speed);
-        const double behind = gap_to_follower(v, v.lane - 1);
+        const double ahead = gap_to_leader(i, v.lane - 1, other_speed);
+        const double behind = gap_to_follower(i, v.lane - 1);
         if (ahead > 50.0 && behind > 15.0 + v.speed_mps && uni(rng_) < 0.3 * p) start_change[i] = v.lane - 1;
       }
+    }
+    // Claim the target lane at once, so a vehicle deciding later in this step sees it.
+    if (start_change[i] >= 0) {
+      Vehicle& changing = vehicles_[i];
+      changing.lane_change_from_m = changing.lateral_m;
+      changing.lane = start_change[i];
+      changing.lane_change_t = 0.0;
     }
   }
 
@@ -300,11 +388,6 @@ void Traffic::step(double dt) {
     v.s_m += 0.5 * (v.speed_mps + new_speed) * dt;
     v.speed_mps = new_speed;
     const Road& road = network_.roads[v.road];
-    if (start_change[i] >= 0) {
-      v.lane_change_from_m = v.lateral_m;
-      v.lane = start_change[i];
-      v.lane_change_t = 0.0;
-    }
     if (v.lane_change_t >= 0.0) {
       v.lane_change_t = std::min(1.0, v.lane_change_t + dt / kLaneChangeDuration);
       const double target = lane_offset(road, v.lane);

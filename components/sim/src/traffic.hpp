@@ -2,7 +2,9 @@
 // Microscopic traffic on the road network: car following (IDM), lane changes for overtaking,
 // convoys, side-by-side pairs, a stop-and-go signal cycle, and parked vehicles that never move.
 
+#include <array>
 #include <cstdint>
+#include <map>
 #include <random>
 #include <vector>
 
@@ -73,21 +75,30 @@ class Traffic {
 
   double lane_offset(const Road& road, int lane) const;
   double road_s(const Vehicle& v) const;  // position along the road's own arc length
-  bool red_light(const Vehicle& v) const;
-  double gap_to_leader(const Vehicle& v, int lane, double& leader_speed) const;
-  double gap_to_follower(const Vehicle& v, int lane) const;
+  bool red_light(bool major_road) const;
+  bool occupies(const Vehicle& other, int lane) const;
+  // Gaps (bumper to bumper) to the nearest vehicle ahead / behind vehicles_[i] in `lane`; needs build_index().
+  double gap_to_leader(size_t i, int lane, double& leader_speed) const;
+  double gap_to_follower(size_t i, int lane) const;
+  double spawn_gap(const Vehicle& v, double& leader_speed) const;  // for a vehicle not yet on the road
+  void build_index();
+  void mark_occupied_junctions();
   double stop_line_gap(const Vehicle& v) const;
   void schedule_arrivals(LaneState& lane);
   void try_spawn(LaneState& lane);
   Vehicle make_vehicle(bool dark_allowed);
   void update_pose(Vehicle& v) const;
   void add_parked(cv::Point2d view_centre_m, double view_radius_m);
+  void populate();
 
   const Scenario& scenario_;
   const RoadNetwork& network_;
   std::mt19937_64 rng_;
   std::vector<Vehicle> vehicles_;
   std::vector<LaneState> lanes_;
+  std::map<std::pair<int, int>, std::vector<size_t>> groups_;  // (road, direction) -> vehicles sorted by s
+  std::vector<size_t> rank_;                                   // position of each vehicle in its group
+  std::vector<std::array<bool, 2>> junction_occupied_;          // per crossing: a vehicle of road_a / road_b inside
   int next_id_ = 1;
   double time_ = 0.0;
 };

@@ -1,5 +1,6 @@
 #include <algorithm>
 #include <cmath>
+#include <set>
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
@@ -202,6 +203,92 @@ TEST(Simulator, ProceduralGroundNeedsNoImages) {
   cv::Scalar mean, stddev;
   cv::meanStdDev(frames[1].image, mean, stddev);
   EXPECT_GT(stddev[0], 5.0);
+}
+
+}  // namespace
+}  // namespace uavmot::sim
+
+namespace uavmot::sim {
+namespace {
+
+TEST(Simulator, VehiclesNeverOverlapEvenAtJunctionsAndLaneChanges) {
+  Scenario s = testing::small_scenario("dense", 40);
+  s.camera.width = 640;
+  s.camera.height = 480;
+  const auto frames = run(s, 1);
+  int pairs_close = 0;
+  for (const SimFrame& f : frames) {
+    for (size_t i = 0; i < f.objects.size(); ++i)
+      for (size_t j = i + 1; j < f.objects.size(); ++j) {
+        const double inter = intersection_area(f.objects[i].box, f.objects[j].box);
+        EXPECT_LT(inter, 0.02 * box_area(f.objects[i].box))
+            << "frame " << f.index << " ids " << f.objects[i].id << " and " << f.objects[j].id;
+        if (std::hypot(f.objects[i].box.cx - f.objects[j].box.cx, f.objects[i].box.cy - f.objects[j].box.cy) < 15.0) ++pairs_close;
+      }
+  }
+  EXPECT_GT(pairs_close, 20) << "dense traffic should bring vehicles close together";
+}
+
+TEST(Simulator, DenseTrafficHasManyMoversAndParkedVehicles) {
+  Scenario s = testing::small_scenario("dense", 2);
+  s.camera.width = 640;
+  s.camera.height = 480;
+  const auto frames = run(s, 2);
+  int parked = 0, moving = 0;
+  for (const ObjectTruth& o : frames[1].objects) {
+    if (o.parked) ++parked;
+    if (o.moving) ++moving;
+    EXPECT_FALSE(o.parked && o.moving);
+  }
+  EXPECT_GT(moving, 10);
+  EXPECT_GT(parked, 0);
+}
+
+}  // namespace
+}  // namespace uavmot::sim
+
+namespace uavmot::sim {
+namespace {
+
+TEST(Simulator, TooLargeAGroundAreaIsRefusedQuickly) {
+  Scenario s = preset_scenario("fastcam");
+  s.frames = 100000;
+  try {
+    Simulator sim(s, 1);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("raster_max_megapixels"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace uavmot::sim
+
+namespace uavmot::sim {
+namespace {
+
+TEST(Simulator, VehiclesEnterAndLeaveTheView) {
+  Scenario s = testing::small_scenario("paper", 60);
+  const auto frames = run(s, 6);
+  std::set<int> first, last, all;
+  for (const ObjectTruth& o : frames.front().objects) first.insert(o.id);
+  for (const ObjectTruth& o : frames.back().objects) last.insert(o.id);
+  for (const SimFrame& f : frames)
+    for (const ObjectTruth& o : f.objects) {
+      all.insert(o.id);
+      EXPECT_GT(o.visibility, 0.0);
+      EXPECT_LE(o.visibility, 1.0);
+    }
+  int entered = 0, left = 0;
+  for (int id : all) {
+    if (!first.count(id)) ++entered;
+    if (!last.count(id)) ++left;
+  }
+  EXPECT_GT(entered, 0);
+  EXPECT_GT(left, 0);
+  // Ids are given in order of first appearance, from 1.
+  EXPECT_EQ(*all.begin(), 1);
+  EXPECT_EQ(*all.rbegin(), static_cast<int>(all.size()));
 }
 
 }  // namespace

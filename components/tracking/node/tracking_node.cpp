@@ -1,9 +1,16 @@
 // uavmot-tracking: motion estimates + segmentation in, tracks out (uavmot/tracks).
+// With --state-dir, the tracker's state is saved after every frame and published on
+// uavmot/tracker_state; a restarted instance restores it and continues with the same track ids.
 
+#include <filesystem>
 #include <map>
+
+#include <spdlog/spdlog.h>
 
 #include "motionPubSubTypes.h"
 #include "segmentationPubSubTypes.h"
+#include "tracker_statePubSubTypes.h"
+#include "tracker_state_io.hpp"
 #include "tracksPubSubTypes.h"
 #include "uavmot/core/app.hpp"
 #include "uavmot/dds/node_options.hpp"
@@ -14,9 +21,14 @@
 namespace uavmot {
 namespace {
 
+struct StreamTracker {
+  tracking::Tracker tracker;
+  int64_t restored_frame = 0;  // inputs up to this frame are already in the restored state
+};
+
 int tracking_main(int argc, char** argv) {
   dds::NodeOptions node;
-  std::string config_file;
+  std::string config_file, state_dir;
   double gsd_m = 0.0, fps = 0.0;
   int streams = 1;
   return run_app(argc, argv, "tracking", "track moving objects (motion + segmentation -> tracks)", [&](CLI::App& app) {
@@ -24,6 +36,7 @@ int tracking_main(int argc, char** argv) {
     app.add_option("--gsd", gsd_m, "ground sampling distance, m/px")->check(CLI::PositiveNumber);
     app.add_option("--fps", fps, "frame rate")->check(CLI::PositiveNumber);
     app.add_option("--streams", streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--state-dir", state_dir, "save the tracker state here after every frame and restore it on start");
     dds::add_node_options(app, node);
     return [&]() -> int {
       dds::finalize(node, "tracking");
@@ -31,16 +44,47 @@ int tracking_main(int argc, char** argv) {
       auto options = config_file.empty() ? pipeline::ChainOptions{} : pipeline::load_chain_options(config_file);
       if (gsd_m > 0) options.scene.gsd_m = gsd_m;
       if (fps > 0) options.scene.fps = fps;
+      if (!state_dir.empty()) std::filesystem::create_directories(state_dir);
       dds::Participant participant(node.dds);
-      std::map<std::string, tracking::Tracker> trackers;
+      auto state_out = participant.make_writer<msg::TrackerSnapshotPubSubType>(dds::kTrackerStateTopic, dds::TopicClass::State);
+      std::map<std::string, StreamTracker> trackers;
+      auto state_file = [&](const std::string& stream) { return state_dir + "/tracker_state_" + stream + ".cdr"; };
+
+      auto tracker_for = [&](const std::string& stream) -> StreamTracker& {
+        auto [it, fresh] = trackers.try_emplace(stream, StreamTracker{tracking::Tracker(options.tracking, options.scene), 0});
+        if (fresh && !state_dir.empty()) {
+          if (auto snapshot = tracking::load_snapshot(state_file(stream))) {
+            std::string why;
+            auto state = tracking::from_msg(*snapshot, why);
+            if (!state) throw InputError("tracker state '" + state_file(stream) + "': " + why);
+            it->second.tracker.restore(*state);
+            it->second.restored_frame = snapshot->frame_index();
+            spdlog::info("stream '{}': restored {} tracks at frame {} (next id {})", stream, state->tracks.size(),
+                         snapshot->frame_index(), state->next_id);
+          }
+        }
+        return it->second;
+      };
+
       using Node = dds::PairedNode<msg::MotionEstimatePubSubType, msg::SegmentationPubSubType, msg::TrackListPubSubType,
                                    MotionEstimate, SegmentationResult>;
       Node paired(participant,
                   {"tracking", dds::kMotionTopic, dds::kSegmentationTopic, dds::kTracksTopic, dds::TopicClass::Chain,
                    dds::TopicClass::Chain, streams, node.wait_subscribers},
-                  [&](const std::string& stream, const MotionEstimate& motion, const SegmentationResult& segmentation) {
-                    auto& tracker = trackers.try_emplace(stream, options.tracking, options.scene).first->second;
-                    return dds::to_msg(tracker.process(motion, segmentation));
+                  [&](const std::string& stream, int64_t index, const MotionEstimate& motion,
+                      const SegmentationResult& segmentation) -> std::optional<msg::TrackList> {
+                    StreamTracker& s = tracker_for(stream);
+                    if (index <= s.restored_frame) return std::nullopt;  // already in the restored state
+                    s.tracker.set_image_size(motion.image_width, motion.image_height);
+                    auto tracks = dds::to_msg(s.tracker.process(motion, segmentation));
+                    if (!state_dir.empty()) {
+                      auto snapshot = tracking::to_msg(s.tracker.state(), stream, index);
+                      if (!tracking::save_snapshot(snapshot, state_file(stream))) {
+                        spdlog::warn("cannot write tracker state '{}'", state_file(stream));
+                      }
+                      state_out->write(snapshot);
+                    }
+                    return tracks;
                   });
       return paired.run();
     };

@@ -46,6 +46,8 @@ struct MotionEstimate {
   std::string stream_id;
   int64_t frame_index = 0;
   int64_t capture_time_ns = 0;
+  int image_width = 0;  // size of the frame it was estimated on
+  int image_height = 0;
   Homography homography = Homography::eye();  // frame k-1 -> frame k
   HomographyQuality quality;
   std::vector<TrackedFeature> features;

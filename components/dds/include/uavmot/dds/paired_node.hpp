@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include "uavmot/core/frame_pairing.hpp"
@@ -21,7 +22,8 @@ namespace uavmot::dds {
 template <class PubA, class PubB, class PubOut, class A, class B>
 class PairedNode {
  public:
-  using Process = std::function<typename PubOut::type(const std::string& stream, const A&, const B&)>;
+  // Returns the sample to publish, or nullopt to publish nothing for this pair.
+  using Process = std::function<std::optional<typename PubOut::type>(const std::string& stream, int64_t index, const A&, const B&)>;
 
   struct Spec {
     std::string component;
@@ -108,10 +110,11 @@ class PairedNode {
     const uint64_t dropped_before = s.pairing.dropped();
     while (auto pair = s.pairing.pop()) {
       const auto t0 = std::chrono::steady_clock::now();
-      auto out = process_(id, pair->first, pair->second);
+      auto out = process_(id, pair->index, pair->first, pair->second);
+      if (!out) continue;
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      if (!publish(*writer_, out, mode_)) health_.dropped();
-      health_.frame_out(pair->index, ms, latency_ms_since(out.capture_time_ns()));
+      if (!publish(*writer_, *out, mode_)) health_.dropped();
+      health_.frame_out(pair->index, ms, latency_ms_since(out->capture_time_ns()));
       health_.set_bytes_out(writer_->bytes_sent());
     }
     health_.dropped(s.pairing.dropped() - dropped_before);

@@ -10,13 +10,14 @@ inline constexpr const char* kMotionTopic = "uavmot/motion";
 inline constexpr const char* kSegmentationTopic = "uavmot/segmentation";
 inline constexpr const char* kTracksTopic = "uavmot/tracks";
 inline constexpr const char* kHealthTopic = "uavmot/health";
+inline constexpr const char* kTrackerStateTopic = "uavmot/tracker_state";
 
 // lossless: nothing is dropped, slow readers hold back writers. live: newest sample wins.
 enum class DeliveryMode { Lossless, Live };
 DeliveryMode parse_delivery_mode(const std::string& name);  // "lossless" | "live"
 const char* to_string(DeliveryMode mode);
 
-enum class TopicClass { Frames, Chain, Health };
+enum class TopicClass { Frames, Chain, Health, State };
 
 // Names of the endpoint profiles in bringup/qos/uavmot_qos.xml, e.g. "frames_lossless_writer".
 std::string writer_profile(TopicClass topic_class, DeliveryMode mode);

@@ -11,22 +11,23 @@ namespace uavmot::motion {
 struct MotionOptions {
   // --- Shi-Tomasi detection, only where coverage is missing -------------------------------
   int max_features = 1000;          // cap on live features per frame
-  int cell_size_px = 48;            // detection grid: a cell is refilled when it holds too few features
+  int cell_size_px = 48;            // detection grid cell side; 0 = sized so the cells hold max_features
   int features_per_cell = 1;        // target features per grid cell
   double min_distance_px = 10.0;    // no new corner closer than this to any live feature
   int corner_block_size = 5;        // Shi-Tomasi neighbourhood (px)
-  double min_corner_response = 3e-4;  // absolute minimum eigenvalue (cv::cornerMinEigenVal units)
+  double min_corner_response = 6e-4;  // absolute minimum eigenvalue (cv::cornerMinEigenVal units)
   int border_px = 8;                // features this close to the image border are not used
   int empty_cell_retry_frames = 4;  // a cell without any corner is searched again after this many frames
 
   // --- Pyramidal Lucas-Kanade with forward-backward check ----------------------------------
   int lk_window_px = 11;            // odd window side
-  int pyramid_levels = 3;           // levels above the full-resolution image (maxLevel)
+  int pyramid_levels = 4;           // levels above the full-resolution image (maxLevel)
   int lk_max_iterations = 20;
   double lk_epsilon_px = 0.01;      // stop when an update is smaller than this
   int backward_levels = 0;          // pyramid levels for the backward check (starts at the answer)
   double max_forward_backward_px = 0.5;
   bool predict_with_previous_homography = true;  // initial flow from the last camera motion
+  bool recover_large_motion = true;  // if that fails, retry from a phase-correlation translation
 
   // --- Frame-to-frame homography ----------------------------------------------------------
   std::string robust_method = "ransac";  // "ransac" or "magsac" (cv::findHomography)
@@ -45,12 +46,14 @@ struct MotionOptions {
   bool refine_exclude_moving = true;   // features classified moving do not enter the refinement
 
   // --- Independent motion ----------------------------------------------------------------
+  int background_flow_degree = 3;   // polynomial of the residual background field (0 = off)
   int history_frames = 10;          // positions per feature used for the velocity fit
   int min_track_frames = 4;         // a feature is classified once seen in this many frames
   double position_sigma_px = 0.08;  // prior 1-sigma tracking noise of one position
   double prior_weight = 4.0;        // degrees of freedom the prior noise counts for
   double moving_sigma_factor = 4.0;    // moving when speed > factor * velocity_sigma ...
   double min_moving_speed_px = 0.15;   // ... and > this (px/frame)
+  double min_moving_speed_mps = 0.0;   // ... and > this ground speed (m/s, via SceneInfo); 0 = unused
   int confirm_frames = 2;           // consecutive significant frames to become moving (and to stop)
   double release_ratio = 0.7;       // a moving feature stops below this fraction of the threshold
 };

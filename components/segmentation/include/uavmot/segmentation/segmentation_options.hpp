@@ -21,8 +21,9 @@ struct ClusteringOptions {
   // larger, so noisy sub-pixel velocities do not shatter one car into several clusters.
   double link_speed_difference_mps = 2.5;
   double velocity_sigma_factor = 3.0;
-  // Clusters with fewer moving features are dropped (isolated features are mostly noise).
-  int min_features = 2;
+  // Clusters with fewer moving features are dropped. 1 by default: the motion layer keeps
+  // features at least 10 px apart, so a 15 x 5 px car often carries a single moving feature.
+  int min_features = 1;
 };
 
 // The three gradient segmentations (paper III-B); each writes its own accumulator.
@@ -65,8 +66,8 @@ struct RegionOptions {
   FusionRule fusion_rule = FusionRule::Sum;
   // Adaptive threshold: the `threshold_quantile` quantile of the window's accumulator values,
   // but at least `threshold_min_fraction` of the accumulator's full scale.
-  double threshold_quantile = 0.8;
-  double threshold_min_fraction = 0.5;
+  double threshold_quantile = 0.7;
+  double threshold_min_fraction = 0.2;
   // Pixel connectivity of the connected components: 4, 8, or 0 = by method: 8 for lbp (its
   // accumulator is sparse, accepted pixels often touch only diagonally) and 4 for the dense
   // korn, morphological and fusion accumulators (8 would leak across the thin diagonal gap
@@ -79,6 +80,17 @@ struct RegionOptions {
   // A gradient blob is the object's outline thickened by the filters: its box is shrunk by
   // this much (px) on every side to return the object's own extent.
   double edge_band_px = 1.0;
+  // A blob wider than split_width_factor x the vehicle width, or longer than
+  // split_length_factor x its length (after the edge band), is re-thresholded on its own pixels
+  // to split it into vehicles (two cars side by side whose outlines touch); 0 disables. Width
+  // only by default: a car with its shadow is ~1.5 widths wide, a truck up to ~2.7 car lengths.
+  double split_width_factor = 2.0;
+  double split_length_factor = 0.0;
+  // Blobs of one window that touch and together fit in group_length_factor x vehicle length
+  // by group_width_factor x vehicle width are parts of one vehicle and become one region (the
+  // windscreen and roof of a car give separate outlines); 0 disables.
+  double group_length_factor = 1.3;
+  double group_width_factor = 1.5;
   // Plausible region sizes, as multiples of the expected vehicle length / width.
   double min_length_factor = 0.4;
   double max_length_factor = 3.0;
@@ -90,8 +102,9 @@ struct RegionOptions {
   double support_margin_px = 1.5;
   // When no blob of a cluster is plausible and supported, return the cluster's box instead
   // (marked method=clustering) so that a low-contrast object is not lost; likewise, when at
-  // least max(2, min_features) of a cluster's features lie in no kept region, add the box
-  // around those features (a second car whose blob was rejected).
+  // least max(2, min_features) of a cluster's features lie farther than support_margin_px plus
+  // half a vehicle width from every kept region, add the box around those features (a second
+  // car whose blob was rejected).
   bool fallback_to_cluster_box = true;
   // A region whose box is covered by an earlier region's box for more than this fraction of
   // its area is a duplicate (nested blob, or the same blob seen from two cluster windows).

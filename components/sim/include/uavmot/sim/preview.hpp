@@ -3,6 +3,7 @@
 // judge realism: moving vehicles green (with velocity), stopped vehicles yellow, parked blue.
 
 #include <opencv2/core/mat.hpp>
+#include <opencv2/core/types.hpp>
 
 #include "uavmot/sim/simulator.hpp"
 
@@ -10,6 +11,7 @@ namespace uavmot::sim {
 
 struct PreviewOptions {
   double scale = 1.0;       // enlarge (e.g. 2) so small vehicles can be seen
+  cv::Rect crop;            // part of the frame to show (before scaling); empty = all
   bool draw_ids = true;
   bool draw_velocity = true;
   double velocity_gain = 10.0;  // arrow length in frames of motion

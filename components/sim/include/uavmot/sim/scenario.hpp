@@ -33,6 +33,7 @@ struct GroundParams {
   std::string texture_dir;        // folder of images; "" = the shared CLIF 2007 frames; "procedural" = synthetic
   double texture_gsd_m = 1.0;     // metres per texture pixel
   double texture_contrast = 1.0;  // scales the texture's deviation from its mean
+  double detail_noise = 5.0;      // gray-level spread of fine ground grain added at rendering resolution
   int raster_max_megapixels = 120;  // refuse scenarios that need a larger ground raster
 };
 
@@ -45,7 +46,7 @@ struct RoadParams {
   int side_lanes_per_direction = 1;
   double lane_width_m = 3.5;
   double asphalt_gray = 85.0;     // 0..255
-  double asphalt_opacity = 0.8;   // how much of the underlying texture is replaced
+  double asphalt_opacity = 0.9;   // how much of the underlying texture is replaced
   double marking_gray = 215.0;
   double marking_width_m = 0.15;
   double dash_length_m = 3.0;

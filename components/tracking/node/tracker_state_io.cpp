@@ -1,0 +1,141 @@
+#include "tracker_state_io.hpp"
+
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <fastdds/rtps/common/SerializedPayload.h>
+
+#include "tracker_statePubSubTypes.h"
+#include "uavmot/core/error.hpp"
+
+namespace uavmot::tracking {
+namespace {
+
+msg::TrackRecordState record_to_msg(const TrackRecord& r) {
+  msg::TrackRecordState m;
+  m.id(r.id);
+  m.state(static_cast<msg::TrackState>(static_cast<uint8_t>(r.state)));
+  m.mean(r.mean);
+  m.covariance(r.covariance);
+  m.age(r.age);
+  m.hits(r.hits);
+  m.hit_history(r.hit_history);
+  m.frames_since_update(r.frames_since_update);
+  m.frames_dormant(r.frames_dormant);
+  msg::OrientedBox box;
+  box.cx(r.anchor_box.cx);
+  box.cy(r.anchor_box.cy);
+  box.width(r.anchor_box.width);
+  box.length(r.anchor_box.length);
+  box.angle_deg(r.anchor_box.angle_deg);
+  m.anchor_box(box);
+  for (const auto& f : r.features) {
+    msg::FeatureLinkState fm;
+    fm.feature_id(f.feature_id);
+    fm.u(f.box_uv.x);
+    fm.v(f.box_uv.y);
+    fm.frames_linked(f.frames_linked);
+    m.features().push_back(fm);
+  }
+  return m;
+}
+
+std::optional<TrackRecord> record_from_msg(const msg::TrackRecordState& m, std::string& why) {
+  TrackRecord r;
+  r.id = m.id();
+  const auto state = static_cast<uint8_t>(m.state());
+  if (state > static_cast<uint8_t>(TrackState::Coasting)) {
+    why = "track " + std::to_string(m.id()) + " has an unknown state";
+    return std::nullopt;
+  }
+  r.state = static_cast<TrackState>(state);
+  r.mean = m.mean();
+  r.covariance = m.covariance();
+  r.age = m.age();
+  r.hits = m.hits();
+  r.hit_history = m.hit_history();
+  r.frames_since_update = m.frames_since_update();
+  r.frames_dormant = m.frames_dormant();
+  const auto& b = m.anchor_box();
+  r.anchor_box = {b.cx(), b.cy(), b.width(), b.length(), b.angle_deg()};
+  for (const auto& fm : m.features()) {
+    if (!std::isfinite(fm.u()) || !std::isfinite(fm.v())) {
+      why = "track " + std::to_string(m.id()) + " has a non-finite feature link";
+      return std::nullopt;
+    }
+    r.features.push_back({fm.feature_id(), {fm.u(), fm.v()}, fm.frames_linked()});
+  }
+  return r;
+}
+
+}  // namespace
+
+msg::TrackerSnapshot to_msg(const TrackerState& state, const std::string& stream_id, int64_t frame_index) {
+  msg::TrackerSnapshot m;
+  m.stream_id(stream_id);
+  m.frame_index(frame_index);
+  m.next_id(state.next_id);
+  m.frames_processed(state.frames_processed);
+  m.rejected_homographies(state.rejected_homographies);
+  m.rejected_regions(state.rejected_regions);
+  m.rejected_features(state.rejected_features);
+  for (const auto& r : state.tracks) m.tracks().push_back(record_to_msg(r));
+  for (const auto& r : state.dormant) m.dormant().push_back(record_to_msg(r));
+  return m;
+}
+
+std::optional<TrackerState> from_msg(const msg::TrackerSnapshot& m, std::string& why) {
+  TrackerState state;
+  state.next_id = m.next_id();
+  state.frames_processed = m.frames_processed();
+  state.rejected_homographies = m.rejected_homographies();
+  state.rejected_regions = m.rejected_regions();
+  state.rejected_features = m.rejected_features();
+  for (const auto* list : {&m.tracks(), &m.dormant()}) {
+    for (const auto& rm : *list) {
+      auto r = record_from_msg(rm, why);
+      if (!r) return std::nullopt;
+      (list == &m.tracks() ? state.tracks : state.dormant).push_back(std::move(*r));
+    }
+  }
+  return state;
+}
+
+bool save_snapshot(const msg::TrackerSnapshot& snapshot, const std::string& path) {
+  msg::TrackerSnapshotPubSubType type;
+  auto copy = snapshot;
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(type.getSerializedSizeProvider(&copy)());
+  if (!type.serialize(&copy, &payload)) return false;
+  const std::string tmp = path + ".tmp";
+  {
+    std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
+    if (!out) return false;
+    out.write(reinterpret_cast<const char*>(payload.data), payload.length);
+    if (!out) return false;
+  }
+  return std::rename(tmp.c_str(), path.c_str()) == 0;
+}
+
+std::optional<msg::TrackerSnapshot> load_snapshot(const std::string& path) {
+  if (!std::filesystem::exists(path)) return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<uint32_t>(bytes.size()));
+  std::copy(bytes.begin(), bytes.end(), payload.data);
+  payload.length = static_cast<uint32_t>(bytes.size());
+  msg::TrackerSnapshotPubSubType type;
+  msg::TrackerSnapshot snapshot;
+  bool ok = false;
+  try {
+    ok = !bytes.empty() && type.deserialize(&payload, &snapshot);
+  } catch (const std::exception&) {
+    ok = false;
+  }
+  if (!ok) throw InputError("tracker state file '" + path + "' is corrupt");
+  return snapshot;
+}
+
+}  // namespace uavmot::tracking
