@@ -12,7 +12,10 @@ void record_frame(TrackRecord& track, bool region_hit, bool supported, const Tra
   if (region_hit) ++track.hits;
   track.frames_since_update = (region_hit || supported) ? 0 : track.frames_since_update + 1;
   if (track.state == TrackState::Tentative) {
-    if (std::popcount(track.hit_history) >= options.confirm_hits) track.state = TrackState::Confirmed;
+    const int hits = std::popcount(track.hit_history);
+    const bool by_features = options.confirm_hits_with_features > 0 && hits >= options.confirm_hits_with_features &&
+                             static_cast<int>(track.features.size()) >= options.confirm_min_features;
+    if (hits >= options.confirm_hits || by_features) track.state = TrackState::Confirmed;
     return;
   }
   track.state = track.frames_since_update == 0 ? TrackState::Confirmed : TrackState::Coasting;

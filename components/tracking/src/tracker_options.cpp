@@ -68,6 +68,8 @@ const std::vector<IntField>& int_fields() {
       {"min_reconstruction_features", &TrackerOptions::min_reconstruction_features, 1, 1000},
       {"confirm_hits", &TrackerOptions::confirm_hits, 1, 32},
       {"confirm_window", &TrackerOptions::confirm_window, 1, 32},
+      {"confirm_hits_with_features", &TrackerOptions::confirm_hits_with_features, 0, 32},
+      {"confirm_min_features", &TrackerOptions::confirm_min_features, 1, 1000},
       {"tentative_max_misses", &TrackerOptions::tentative_max_misses, 0, 1000},
       {"max_coast_frames", &TrackerOptions::max_coast_frames, 0, 100000},
       {"reacquire_max_frames", &TrackerOptions::reacquire_max_frames, 0, 1000000},

@@ -62,6 +62,10 @@ struct TrackerOptions {
   // --- Lifecycle (deleter) ------------------------------------------------------------------
   int confirm_hits = 3;                     // region hits ...
   int confirm_window = 5;                   // ... within this many frames confirm a tentative track
+  // Fewer hits suffice when the track already has this many linked moving features that move like
+  // it (clutter has none); 0 disables.
+  int confirm_hits_with_features = 2;
+  int confirm_min_features = 2;
   int tentative_max_misses = 1;             // a tentative track missing more frames in a row is deleted
   int max_coast_frames = 5;                 // a confirmed track coasts this many frames on prediction
   // Then it waits hidden (dormant) at its last measured ground position for this many frames and is
