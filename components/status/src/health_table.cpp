@@ -52,10 +52,11 @@ std::vector<HealthRow> HealthTable::rows(int64_t now_ns) const {
     out.push_back(std::move(row));
   }
   std::stable_sort(out.begin(), out.end(), [](const HealthRow& a, const HealthRow& b) {
-    if (a.report.stream_id != b.report.stream_id) return a.report.stream_id < b.report.stream_id;
+    // Chain order first: the source reports its stream id, the nodes serving every stream "*".
     const int pa = chain_position(a.report.component), pb = chain_position(b.report.component);
     if (pa != pb) return pa < pb;
-    return a.report.component < b.report.component;
+    if (a.report.component != b.report.component) return a.report.component < b.report.component;
+    return a.report.stream_id < b.report.stream_id;
   });
   return out;
 }

@@ -34,11 +34,15 @@ TEST(HealthTable, KeepsTheLatestReportPerStreamAndComponent) {
   auto other_stream = report("motion", 11, 0);
   other_stream.stream_id = "uav2";
   table.update(other_stream);
+  auto source = report("source", 11, 0);
+  source.stream_id = "uav1";
+  table.update(source);
   const auto rows = table.rows(11 * kSecond);
-  ASSERT_EQ(rows.size(), 2u);
-  EXPECT_EQ(rows[0].report.stream_id, "*");
-  EXPECT_EQ(rows[0].report.last_frame_index, 42);
-  EXPECT_EQ(rows[1].report.stream_id, "uav2");
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0].report.component, "source");  // the chain's head first, whatever its stream
+  EXPECT_EQ(rows[1].report.stream_id, "*");
+  EXPECT_EQ(rows[1].report.last_frame_index, 42);
+  EXPECT_EQ(rows[2].report.stream_id, "uav2");
 }
 
 TEST(HealthTable, BytesPerSecondComesFromSuccessiveReports) {

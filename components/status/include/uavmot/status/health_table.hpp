@@ -46,7 +46,7 @@ class HealthTable {
   explicit HealthTable(double stale_after_s = 3.0) : stale_after_s_(stale_after_s) {}
 
   void update(const HealthReport& report);
-  // Rows ordered by stream, then chain order (source, motion, segmentation, tracking, sink, others).
+  // Rows in chain order (source, motion, segmentation, tracking, sink, others by name), then by stream.
   // `now_ns` is the wall clock: stamps are wall-clock too, so a report that a late subscriber
   // receives long after it was sent (transient-local history) is already stale.
   std::vector<HealthRow> rows(int64_t now_ns) const;
