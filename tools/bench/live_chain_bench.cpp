@@ -98,6 +98,7 @@ int bench_main(int argc, char** argv) {
       const pid_t launch = ::fork();
       if (launch == 0) {
         std::vector<char*> cargs;
+        ::dup2(STDERR_FILENO, STDOUT_FILENO);  // the launch's log to stderr; stdout is for the figures
         for (auto& a : args) cargs.push_back(a.data());
         cargs.push_back(nullptr);
         ::execv(cargs[0], cargs.data());
@@ -106,6 +107,7 @@ int bench_main(int argc, char** argv) {
       std::cerr << "bench-live: " << fmt::format("{}", fmt::join(args, " ")) << "\n";
 
       std::vector<double> latencies_ms;
+      nlohmann::json per_frame = nlohmann::json::array();  // [frame index, latency ms]
       std::map<std::string, Component> components;
       int64_t first_capture = 0, last_capture = 0;
       int status = 0;
@@ -118,6 +120,7 @@ int bench_main(int argc, char** argv) {
         while (tracks->take(t)) {
           if (t.end_of_stream()) continue;
           latencies_ms.push_back(dds::latency_ms_since(t.capture_time_ns()));
+          per_frame.push_back({t.frame_index(), latencies_ms.back()});
           if (!first_capture) first_capture = t.capture_time_ns();
           last_capture = t.capture_time_ns();
         }
@@ -170,6 +173,7 @@ int bench_main(int argc, char** argv) {
                                  {"dropped", c.last.dropped()}, {"cpu_s", c.cpu()},
                                  {"respawns", c.cpu_by_pid.empty() ? 0 : c.cpu_by_pid.size() - 1}};
       }
+      j["latency_per_frame"] = per_frame;
       const bool ok = WIFEXITED(status) && WEXITSTATUS(status) == 0;
       j["launch_ok"] = ok;
       if (!json_out.empty()) std::ofstream(json_out) << j.dump(2) << "\n";
