@@ -59,7 +59,7 @@ fi
 
 step "running the distributed chain ($mode): uavmot launch bringup/local.yaml --input $seq --out $tracks"
 t0=$SECONDS
-"$bin/uavmot" launch bringup/local.yaml --input "$seq" --out "$tracks" --set mode="$mode" --set domain=45 2>"$out/launch.log" || {
+"$bin/uavmot" launch bringup/local.yaml --input "$seq" --out "$tracks" --set mode="$mode" --set domain=45 >"$out/launch.log" 2>&1 || {
   echo "demo: the launch failed; its log:" >&2; tail -40 "$out/launch.log" >&2; exit 1; }
 echo "   $(cut -d, -f2 "$tracks/tracks.txt" | sort -u | wc -l) tracks over $(cut -d, -f1 "$tracks/tracks.txt" | sort -u | wc -l) frames in $((SECONDS - t0)) s -> $tracks/tracks.txt (log: $out/launch.log)"
 
