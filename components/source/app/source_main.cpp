@@ -93,7 +93,9 @@ int source_main(int argc, char** argv) {
           }
           ++published;
           health.frame_in();
-          health.frame_out(frame.index, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count());
+          // Paced, the capture time is when the frame was due: latency shows how far the source lags behind.
+          health.frame_out(frame.index, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(),
+                           paced ? dds::latency_ms_since(frame.capture_time_ns) : 0.0);
           health.set_bytes_out(writer->bytes_sent());
           health.tick();
           if (published % 100 == 0) spdlog::info("published {} frames", published);

@@ -1,0 +1,87 @@
+// Live mode, watched: the chain runs under `uavmot launch ... --set mode=live` and
+// `uavmot status --once --json` sees every component with sensible figures.
+
+#include <gtest/gtest.h>
+
+#include <nlohmann/json.hpp>
+#include <map>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "child_process.hpp"
+
+namespace uavmot {
+namespace {
+using testing::binary;
+using testing::ChildProcess;
+
+const std::string kProfile = std::string(UAVMOT_SOURCE_DIR) + "/bringup/local.yaml";
+const std::set<std::string> kChain{"source", "motion", "segmentation", "tracking", "sink"};
+
+// The rows of components that are running and really moving frames.
+void collect_flowing(const nlohmann::json& table, std::map<std::string, nlohmann::json>& rows) {
+  for (const auto& row : table) {
+    if (row["state"] == "running" && !row["stale"].get<bool>() && row["rate_hz"].get<double>() > 0 &&
+        row["frames_out"].get<uint64_t>() > 0) {
+      rows[row["component"].get<std::string>()] = row;
+    }
+  }
+}
+
+std::set<std::string> names(const std::map<std::string, nlohmann::json>& rows) {
+  std::set<std::string> out;
+  for (const auto& [name, row] : rows) out.insert(name);
+  return out;
+}
+
+TEST(LiveStatus, StatusSeesEveryComponentOfALiveChain) {
+  const std::string root = testing::fresh_dir("live_status");
+  // 300 frames at the preset's 25 fps: twelve seconds of live stream to look at.
+  ChildProcess sim({binary("uavmot-sim"), "--preset", "paper", "--seed", "3", "--frames", "300", "--out", root + "/seq", "--quiet"},
+                   root + "/sim.log");
+  ASSERT_EQ(sim.wait(std::chrono::seconds(240)), 0) << sim.log();
+
+  ChildProcess launch({binary("uavmot"), "launch", kProfile, "--input", root + "/seq", "--out", root + "/tracks", "--set",
+                       "mode=live", "--set", "domain=46"},
+                      root + "/launch.log");
+  // Each `status --once` is a new DDS participant that discovers the five components within its
+  // --wait; on a loaded host one may be found only by the next poll, so the polls add up.
+  std::map<std::string, nlohmann::json> seen;
+  nlohmann::json last_table;
+  int polls = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
+  while (names(seen) != kChain && std::chrono::steady_clock::now() < deadline) {
+    ChildProcess status({binary("uavmot"), "status", "--once", "--json", "--wait", "3", "--domain", "46"},
+                        root + "/status_" + std::to_string(++polls) + ".log");
+    const auto code = status.wait(std::chrono::seconds(30));
+    ASSERT_TRUE(code.has_value()) << "status --once did not exit";
+    // stdout (the JSON line) and stderr (log lines, also starting with '[') share the log file.
+    std::istringstream lines(status.log());
+    for (std::string line; std::getline(lines, line);) {
+      if (*code == 0 && nlohmann::json::accept(line)) {
+        last_table = nlohmann::json::parse(line);
+        collect_flowing(last_table, seen);
+      }
+    }
+    if (launch.wait(std::chrono::milliseconds(0)).has_value()) break;
+  }
+  EXPECT_EQ(names(seen), kChain) << "last status table: " << last_table.dump(1) << "\nlaunch log:\n" << launch.log();
+
+  // Sensible values: the source at about the camera rate, latencies positive and bounded by the run.
+  for (const auto& [name, row] : seen) {
+    EXPECT_GT(row["pid"].get<int>(), 0) << name;
+    EXPECT_FALSE(row["host"].get<std::string>().empty()) << name;
+    EXPECT_GE(row["frames_in"].get<uint64_t>(), row["frames_out"].get<uint64_t>() > 0 ? 1u : 0u) << name;
+    EXPECT_GE(row["latency_ms"].get<double>(), 0.0) << name;
+    EXPECT_LT(row["latency_ms"].get<double>(), 60'000.0) << name;
+    if (name == "source") {
+      EXPECT_NEAR(row["rate_hz"].get<double>(), 25.0, 5.0) << "the source publishes at the camera rate in live mode";
+      EXPECT_GT(row["bytes_per_s"].get<double>(), 0.0);
+    }
+  }
+  EXPECT_EQ(launch.wait(std::chrono::seconds(120)), 0) << launch.log();
+}
+
+}  // namespace
+}  // namespace uavmot
