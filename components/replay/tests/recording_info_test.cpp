@@ -15,7 +15,9 @@ std::string write_sample(const std::string& name, mcap::Compression compression)
   const std::string path = dir + "/" + name;
   std::filesystem::remove(path);
   std::filesystem::remove(path + ".tmp");
-  mcap::Writer w({.compression = compression});
+  mcap::WriterOptions options;
+  options.compression = compression;
+  mcap::Writer w(options);
   w.open(path);
   const auto s = w.add_schema("uavmot::msg::MotionEstimate", "omgidl", std::string("module uavmot { };"));
   const auto motion = w.add_channel(s, "uavmot/motion", "cdr", {{"topic", "uavmot/motion"}});

@@ -1,7 +1,9 @@
 #pragma once
 // A typed sample to and from its serialized CDR form, the encapsulation header included: the
-// bytes Fast DDS 2.9 puts on the wire for uavmot's plain (XCDR1, final) types, and what an MCAP
-// "cdr" message holds.
+// bytes a Fast DDS 2.9 DataReader receives for uavmot's (XCDR1, final) types, and what an MCAP
+// "cdr" message holds. On the wire the serialized sample is followed by zeros up to a multiple
+// of 4 bytes (RTPS submessages are 4-byte aligned; Fast DDS leaves the encapsulation options at
+// 0), so to_cdr() pads the same way: the recorded bytes equal the received ones (tested).
 
 #include <cstdint>
 #include <cstring>
@@ -16,7 +18,7 @@ namespace uavmot::record {
 template <class PubSubType>
 std::vector<uint8_t> to_cdr(PubSubType& type, typename PubSubType::type& sample) {
   const uint32_t bound = type.getSerializedSizeProvider(&sample)();
-  std::vector<uint8_t> bytes(bound);
+  std::vector<uint8_t> bytes(bound + 3u);
   // Serialize straight into the vector: the payload borrows its buffer and gives it back.
   eprosima::fastrtps::rtps::SerializedPayload_t payload;
   payload.data = bytes.data();
@@ -26,7 +28,7 @@ std::vector<uint8_t> to_cdr(PubSubType& type, typename PubSubType::type& sample)
   payload.data = nullptr;
   payload.max_size = 0;
   if (!ok) throw InputError("cannot serialize a " + std::string(type.getName()) + " sample to CDR");
-  bytes.resize(length);
+  bytes.resize((length + 3u) & ~3u, 0);  // zero padding to the RTPS alignment, as received
   return bytes;
 }
 
