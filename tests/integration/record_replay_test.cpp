@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <regex>
 #include <sstream>
 #include <thread>
 
@@ -64,6 +65,27 @@ std::map<std::string, std::vector<int64_t>> frame_indices(const std::string& fil
   return out;
 }
 
+// bringup/local.yaml with the recorder counted as one more reader of every lossless writer:
+// lossless writers wait only for the readers they count, so an uncounted recorder that matches
+// late misses the first samples.
+std::string profile_counting_the_recorder(const std::string& out_file) {
+  const std::string text = read_file(std::string(UAVMOT_SOURCE_DIR) + "/bringup/local.yaml");
+  const std::regex count(R"re(--wait-subscribers, "(\d+)")re");
+  std::string result;
+  auto last = text.cbegin();
+  for (std::sregex_iterator it(text.begin(), text.end(), count), end; it != end; ++it) {
+    result.append(last, (*it)[0].first);
+    result += "--wait-subscribers, \"" + std::to_string(std::stoi((*it)[1]) + 1) + "\"";
+    last = (*it)[0].second;
+  }
+  result.append(last, text.cend());
+  std::ofstream(out_file) << result;
+  // ${profile_dir}/chain.yaml: the chain configuration beside the profile.
+  fs::copy_file(std::string(UAVMOT_SOURCE_DIR) + "/bringup/chain.yaml", fs::path(out_file).parent_path() / "chain.yaml",
+                fs::copy_options::overwrite_existing);
+  return out_file;
+}
+
 class RecordReplay : public ::testing::Test {
  protected:
   // One chain run on a short paper sequence, recorded; shared by the tests.
@@ -86,7 +108,9 @@ class RecordReplay : public ::testing::Test {
       std::this_thread::sleep_for(std::chrono::milliseconds(50));
     }
     ASSERT_NE(recorder.log().find("recording uavmot/frames"), std::string::npos) << recorder.log();
-    ChildProcess launch({binary("uavmot-launch"), std::string(UAVMOT_SOURCE_DIR) + "/bringup/local.yaml", "--input",
+    const std::string profile = profile_counting_the_recorder(root_ + "/local_recorded.yaml");
+    ASSERT_NE(read_file(profile).find("--wait-subscribers, \"4\""), std::string::npos) << read_file(profile);
+    ChildProcess launch({binary("uavmot-launch"), profile, "--input",
                          sequence_, "--out", root_ + "/chain", "--set", "domain=51"},
                         root_ + "/launch.log");
     ASSERT_EQ(launch.wait(std::chrono::seconds(300)), 0) << launch.log();
@@ -123,7 +147,7 @@ TEST_F(RecordReplay, OfficialMcapReaderReadsAndDecodesTheRecording) {
   }
   const std::string expected_file = root_ + "/expected.json";
   std::ofstream(expected_file) << expected.dump();
-  ChildProcess node({"bash", std::string(UAVMOT_SOURCE_DIR) + "/tests/mcap_js/check_recording.sh", recording_, expected_file},
+  ChildProcess node({"/bin/bash", std::string(UAVMOT_SOURCE_DIR) + "/tests/mcap_js/check_recording.sh", recording_, expected_file},
                     root_ + "/check_recording.log");
   EXPECT_EQ(node.wait(std::chrono::seconds(240)), 0) << node.log();
   EXPECT_NE(node.log().find(" 0 failed"), std::string::npos) << node.log();
