@@ -52,11 +52,11 @@ template <class PubSubType>
 class TypedRecorder final : public TopicRecorder {
  public:
   TypedRecorder(dds::Participant& participant, const record::TopicSpec& spec, const std::string& schema,
-                mcap::QueuedWriter& out)
+                dds::DeliveryMode chain_mode, mcap::QueuedWriter& out)
       : reader_(participant.make_reader<PubSubType>(spec.topic, spec.topic_class)), out_(out) {
     const auto qos = record::describe_qos(reader_->native()->get_qos());
     channel_ = out_.add_channel(out_.add_schema(spec.type_name, "omgidl", schema), spec.topic, "cdr",
-                                record::channel_metadata(spec, participant.options().mode, qos));
+                                record::channel_metadata(spec, chain_mode, qos));
   }
 
   size_t drain() override {
@@ -130,12 +130,18 @@ int record_main(int argc, char** argv) {
       writer_options.chunk_size = chunk_kb * 1024;
       mcap::QueuedWriter writer(writer_options, {.max_queue_bytes = queue_mb << 20});
       writer.open(out);
-      dds::Participant participant(node.dds);
+      // The recorder always subscribes with the lossless (KEEP_ALL) reader profiles: with a live
+      // chain it then loses a sample only when it falls behind the writer's whole history, and
+      // never holds a live writer back (those keep the last samples). --mode names the chain's
+      // mode, stored in the channel metadata for replay.
+      dds::DdsOptions reader_options = node.dds;
+      reader_options.mode = dds::DeliveryMode::Lossless;
+      dds::Participant participant(reader_options);
       std::vector<std::unique_ptr<TopicRecorder>> recorders;
       for (const auto& spec : chosen) {
         const std::string schema = record::schema_text(spec, idl_dir);
         recorders.push_back(record::with_topic_type(spec.topic, [&]<class P>() -> std::unique_ptr<TopicRecorder> {
-          return std::make_unique<TypedRecorder<P>>(participant, spec, schema, writer);
+          return std::make_unique<TypedRecorder<P>>(participant, spec, schema, node.dds.mode, writer);
         }));
       }
       std::string command_line;
