@@ -167,6 +167,23 @@ TEST_F(RecordReplay, InfoListsTopicsTypesAndCounts) {
   EXPECT_NE(text.find("Duration:"), std::string::npos) << text;
 }
 
+TEST_F(RecordReplay, TimedReplayOfATimeWindow) {
+  // The motion messages whose log time lies in [start + 1 s, start + 3 s), by uavmot's reader.
+  mcap::Reader reader;
+  reader.open(recording_);
+  const uint64_t from = reader.statistics().message_start_time + 1'000'000'000ull;
+  uint64_t expected = 0;
+  reader.for_each_message({.topics = {"uavmot/motion"}, .start_time = from, .end_time = from + 2'000'000'000ull},
+                          [&](const mcap::MessageView&) { return ++expected > 0; });
+  ASSERT_GT(expected, 0u);
+  ChildProcess replay({binary("uavmot-replay"), recording_, "--topics", "uavmot/motion", "--start-offset", "1", "--duration",
+                       "2", "--rate", "8", "--domain", "53"},
+                      root_ + "/replay_window.log");
+  ASSERT_EQ(replay.wait(std::chrono::seconds(60)), 0) << replay.log();
+  EXPECT_NE(replay.log().find("replayed " + std::to_string(expected) + " messages"), std::string::npos) << replay.log();
+  EXPECT_NE(replay.log().find("rate 8"), std::string::npos) << replay.log();
+}
+
 TEST_F(RecordReplay, ReplayedMotionAndSegmentationGiveTheRecordedTracks) {
   // A fresh tracking component and sink, as bringup/local.yaml runs them, on another domain.
   const std::string profile = root_ + "/tracking_only.yaml";
