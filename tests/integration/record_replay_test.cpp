@@ -184,6 +184,24 @@ TEST_F(RecordReplay, TimedReplayOfATimeWindow) {
   EXPECT_NE(replay.log().find("rate 8"), std::string::npos) << replay.log();
 }
 
+TEST_F(RecordReplay, LoopStartsOverUntilStopped) {
+  ChildProcess replay({binary("uavmot-replay"), recording_, "--topics", "uavmot/motion", "--loop", "--rate", "50",
+                       "--domain", "53"},
+                      root_ + "/replay_loop.log");
+  // The recording lasts a few seconds: at 50x one pass takes well under a second.
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (replay.log().find("replaying 1 topic") == std::string::npos && std::chrono::steady_clock::now() < deadline) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  std::this_thread::sleep_for(std::chrono::seconds(3));
+  replay.signal(SIGINT);
+  ASSERT_EQ(replay.wait(std::chrono::seconds(30)), 0) << replay.log();
+  std::smatch m;
+  const std::string log = replay.log();
+  ASSERT_TRUE(std::regex_search(log, m, std::regex(R"(replayed (\d+) messages)"))) << log;
+  EXPECT_GT(std::stoul(m[1]), static_cast<unsigned long>(2 * (kFrames + 1))) << log;
+}
+
 TEST_F(RecordReplay, ReplayedMotionAndSegmentationGiveTheRecordedTracks) {
   // A fresh tracking component and sink, as bringup/local.yaml runs them, on another domain.
   const std::string profile = root_ + "/tracking_only.yaml";
