@@ -1,8 +1,10 @@
 // uavmot-process: the whole chain in one process, no DDS. Reads a video, image folder or
 // MOTChallenge sequence and writes tracks.txt, tracks_obb.csv, homographies.txt, features.csv,
-// clusters.txt, regions.txt and summary.json.
+// clusters.txt, regions.txt and summary.json. Given a recording (REC.mcap or --from-recording),
+// re-runs only tracking on its motion estimates and segmentation results.
 
 #include <chrono>
+#include <filesystem>
 
 #include <spdlog/spdlog.h>
 
@@ -14,6 +16,7 @@
 #include "uavmot/pipeline/chain.hpp"
 #include "uavmot/pipeline/progress.hpp"
 #include "uavmot/source/frame_source.hpp"
+#include "process_recording.hpp"
 
 namespace uavmot {
 namespace {
@@ -22,10 +25,13 @@ int process_main(int argc, char** argv) {
   source::FrameSourceOptions input;
   std::string out_dir, config_file, method, log_level = "info";
   double gsd_m = 0.0, fps = 0.0;
-  bool quiet = false;
+  bool quiet = false, from_recording = false;
 
   return run_app(argc, argv, "process", "run the whole chain in one process and write tracks", [&](CLI::App& app) {
-    app.add_option("input", input.path, "video file, image folder or MOTChallenge sequence folder")->required();
+    app.add_option("input", input.path, "video file, image folder, MOTChallenge sequence folder or recording (.mcap)")
+        ->required();
+    app.add_flag("--from-recording", from_recording,
+                 "the input is an MCAP recording: re-run tracking on its motion and segmentation (default for *.mcap)");
     app.add_option("--out", out_dir, "output folder")->required();
     app.add_option("--config", config_file, "chain configuration YAML (sections scene, motion, segmentation, tracking)");
     app.add_option("--segmentation", method, "clustering, korn, morphological, lbp or fusion (default from config: fusion)")
@@ -44,6 +50,11 @@ int process_main(int argc, char** argv) {
       install_shutdown_handler();
       pipeline::ChainOptions options = config_file.empty() ? pipeline::ChainOptions{} : pipeline::load_chain_options(config_file);
       if (!method.empty()) options.segmentation.method = parse_segmentation_method(method);
+      if (from_recording || std::filesystem::path(input.path).extension() == ".mcap") {
+        if (gsd_m > 0) options.scene.gsd_m = gsd_m;
+        if (fps > 0) options.scene.fps = fps;
+        return pipeline::process_recording(input.path, out_dir, options);
+      }
       auto frames = source::open_frame_source(input);
       const auto& info = frames->info();
       if (gsd_m > 0) options.scene.gsd_m = gsd_m;
