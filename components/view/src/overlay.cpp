@@ -116,7 +116,7 @@ void draw_tracks(Canvas& canvas, const TrackList& tracks, const OverlayOptions& 
       if (c.y < top.y) top = c;
     }
     const cv::Point2d at = canvas.map(top);
-    const std::string label = fmt::format("{} {}", track.id, format_speed(track.velocity, options.gsd_m, options.fps));
+    const std::string label = fmt::format("#{} {}", track.id, format_speed(track.velocity, options.gsd_m, options.fps));
     canvas.text(label, cv::Point(static_cast<int>(at.x) - 10, static_cast<int>(at.y) - 4), kConfirmedTrackColour);
   }
 }
