@@ -1,6 +1,8 @@
 #include "uavmot/view/overlay.hpp"
 
 #include <algorithm>
+#include <array>
+#include <vector>
 #include <cmath>
 
 #include <fmt/format.h>
@@ -98,7 +100,41 @@ void draw_features(Canvas& canvas, const MotionEstimate& motion, const OverlayOp
   }
 }
 
+// Where a label goes: centred above the box if free, else below it, else further out or to the
+// side; never over an earlier label when any of those places is free (dense traffic would make
+// them unreadable).
+cv::Point place_label(const Canvas& canvas, const std::string& label, const cv::Rect2d& box, std::vector<cv::Rect>& taken) {
+  int baseline = 0;
+  const cv::Size size = cv::getTextSize(label, cv::FONT_HERSHEY_SIMPLEX, canvas.font_scale, 3, &baseline);
+  const int centred = static_cast<int>(box.x + box.width / 2 - size.width / 2.0);
+  const int above = static_cast<int>(box.y) - 3;
+  const int below = static_cast<int>(box.y + box.height) + size.height + 3;
+  const int step = size.height + baseline + 2;
+  const std::array<int, 6> rows = {above, below, above - step, below + step, above - 2 * step, below + 2 * step};
+  const std::array<int, 3> columns = {centred, centred + size.width / 2 + 4, centred - size.width / 2 - 4};
+  auto rect_at = [&](int x, int y) { return cv::Rect(x, y - size.height - 1, size.width, size.height + baseline + 2); };
+  for (const int y : rows) {
+    for (const int x : columns) {
+      const cv::Rect rect = rect_at(x, y);
+      const bool inside = rect.y >= 0 && rect.y + rect.height <= canvas.image.rows && rect.x >= 0 &&
+                          rect.x + rect.width <= canvas.image.cols;
+      const bool free = std::none_of(taken.begin(), taken.end(), [&](const cv::Rect& r) { return (r & rect).area() > 0; });
+      if (inside && free) {
+        taken.push_back(rect);
+        return {x, y};
+      }
+    }
+  }
+  taken.push_back(rect_at(centred, above));
+  return {centred, above};
+}
+
 void draw_tracks(Canvas& canvas, const TrackList& tracks, const OverlayOptions& options) {
+  struct Label {
+    std::string text;
+    cv::Rect2d box;  // output pixels
+  };
+  std::vector<Label> labels;
   for (const auto& track : tracks.tracks) {
     if (!is_finite(track.box)) continue;
     const bool tentative = track.state == TrackState::Tentative;
@@ -110,14 +146,15 @@ void draw_tracks(Canvas& canvas, const TrackList& tracks, const OverlayOptions& 
     const bool coasting = track.state == TrackState::Coasting;
     const int width = canvas.thickness + 1;
     canvas.box(track.box, coasting ? kCoastingTrackColour : kConfirmedTrackColour, width, coasting);
-    // Label above the box's highest corner.
-    cv::Point2d top(track.box.cx, track.box.cy);
-    for (const auto& c : box_corners(track.box)) {
-      if (c.y < top.y) top = c;
-    }
-    const cv::Point2d at = canvas.map(top);
-    const std::string label = fmt::format("#{} {}", track.id, format_speed(track.velocity, options.gsd_m, options.fps));
-    canvas.text(label, cv::Point(static_cast<int>(at.x) - 10, static_cast<int>(at.y) - 4), kConfirmedTrackColour);
+    const cv::Rect2d bounds = axis_aligned_bounds(track.box);
+    const cv::Point2d top_left = canvas.map(bounds.tl()), bottom_right = canvas.map(bounds.br());
+    labels.push_back({fmt::format("#{} {}", track.id, format_speed(track.velocity, options.gsd_m, options.fps)),
+                      cv::Rect2d(top_left, bottom_right)});
+  }
+  // Labels after every box, so no box is drawn over a label.
+  std::vector<cv::Rect> taken;
+  for (const auto& label : labels) {
+    canvas.text(label.text, place_label(canvas, label.text, label.box, taken), kConfirmedTrackColour);
   }
 }
 
@@ -157,8 +194,8 @@ cv::Mat draw_overlay(const cv::Mat& frame, const MotionEstimate* motion, const S
   }
   const int rows = canvas.image.rows;
   canvas.thickness = options.line_thickness > 0 ? options.line_thickness : std::max(1, static_cast<int>(std::lround(rows / 1000.0)));
-  // ~11 px tall text on a 480-line frame, growing slowly with the frame.
-  canvas.font_scale = std::clamp(rows / 1100.0, 0.35, 1.2);
+  // Text ~9 px tall on a 480-line frame, ~12 px from 1000 lines up: readable, not covering the traffic.
+  canvas.font_scale = std::clamp(rows / 1600.0, 0.35, 0.6);
 
   if (motion) draw_features(canvas, *motion, options);
   if (segmentation && options.clusters) {

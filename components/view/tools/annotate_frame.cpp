@@ -94,7 +94,7 @@ int annotate_main(int argc, char** argv) {
       const cv::Rect scaled(cv::Point(static_cast<int>(crop.x * s), static_cast<int>(crop.y * s)),
                             cv::Size(static_cast<int>(crop.width * s), static_cast<int>(crop.height * s)));
       const cv::Mat picture = annotated(scaled & cv::Rect(0, 0, annotated.cols, annotated.rows));
-      if (!cv::imwrite(out_file, picture)) throw InputError("cannot write " + out_file);
+      if (!cv::imwrite(out_file, picture, {cv::IMWRITE_PNG_COMPRESSION, 9})) throw InputError("cannot write " + out_file);
       int confirmed = 0;
       for (const auto& t : out.tracks.tracks) confirmed += t.state == TrackState::Confirmed;
       spdlog::info("frame {}: crop {},{} {}x{} x{} -> {} ({} confirmed tracks in the frame)", frame_index, crop.x, crop.y,
