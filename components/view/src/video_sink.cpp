@@ -56,7 +56,12 @@ void VideoSink::close() {
   if (writer_) {
     writer_->release();
     writer_.reset();
+  } else if (frames_ == 0 && !closed_) {
+    // Nothing came: leave no empty file that players would call broken.
+    std::error_code ec;
+    fs::remove(options_.path, ec);
   }
+  closed_ = true;
 }
 
 }  // namespace uavmot::view

@@ -87,6 +87,15 @@ TEST(VideoSink, UnwritablePathsAreInputErrors) {
   EXPECT_THROW(VideoSink({temp_path("fourcc.mp4"), 25.0, "mp4"}), InputError);
 }
 
+TEST(VideoSink, NoFramesLeavesNoFile) {
+  const std::string path = temp_path("empty.mp4");
+  {
+    VideoSink sink({path, 25.0, "mp4v"});
+    EXPECT_TRUE(fs::exists(path));  // the path was checked by creating it
+  }
+  EXPECT_FALSE(fs::exists(path));
+}
+
 TEST(VideoSink, CreatesMissingFolders) {
   const fs::path dir = fs::path(temp_path("nested")) / "a" / "b";
   fs::remove_all(fs::path(temp_path("nested")));

@@ -31,7 +31,7 @@ class VideoSink {
   // Appends one frame (mono8 or bgr8). Frames of another size than the first are resized to it.
   // Throws InputError when the encoder cannot be opened for this file.
   void write(const cv::Mat& frame);
-  // Finishes the file (idempotent). Frames written before are all in it.
+  // Finishes the file (idempotent). Frames written before are all in it; with none, no file is left.
   void close();
 
   int64_t frames_written() const { return frames_; }
@@ -42,6 +42,7 @@ class VideoSink {
   std::unique_ptr<cv::VideoWriter> writer_;
   cv::Size size_;
   int64_t frames_ = 0;
+  bool closed_ = false;
 };
 
 }  // namespace uavmot::view
