@@ -129,6 +129,7 @@ int view_main(int argc, char** argv) {
           const cv::Mat annotated = view::draw_overlay(j.frame.image, j.motion ? &*j.motion : nullptr,
                                                        j.segmentation ? &*j.segmentation : nullptr, j.tracks ? &*j.tracks : nullptr,
                                                        overlay);
+          if (!j.tracks) spdlog::debug("frame {} drawn without its tracks", j.frame.index);
           if (video) video->write(annotated);
           if (window) {
             cv::imshow(kWindowName, annotated);
