@@ -26,12 +26,14 @@ cv::Mat test_frame(int i, cv::Size size) {
   return frame;
 }
 
-TEST(VideoSink, RoundTripKeepsEveryFrameAndTheSize) {
-  const std::string path = temp_path("roundtrip.mp4");
+class VideoSinkCodec : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(VideoSinkCodec, RoundTripKeepsEveryFrameAndTheSize) {
+  const std::string path = temp_path("roundtrip_" + GetParam() + ".mp4");
   fs::remove(path);
   const cv::Size size(160, 120);
   {
-    VideoSink sink({path, 25.0, "mp4v"});
+    VideoSink sink({path, 25.0, GetParam()});
     for (int i = 0; i < 20; ++i) sink.write(test_frame(i, size));
     EXPECT_EQ(sink.frames_written(), 20);
   }  // destructor closes
@@ -52,6 +54,8 @@ TEST(VideoSink, RoundTripKeepsEveryFrameAndTheSize) {
   }
   EXPECT_EQ(frames, 20);
 }
+
+INSTANTIATE_TEST_SUITE_P(Mp4, VideoSinkCodec, ::testing::Values("mp4v", "avc1"));
 
 TEST(VideoSink, MonoAndOtherSizedFramesAreConverted) {
   const std::string path = temp_path("mixed.mp4");
