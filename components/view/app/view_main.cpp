@@ -93,6 +93,7 @@ int view_main(int argc, char** argv) {
       std::string stream = stream_filter;
       bool frames_ended = false, tracks_ended = false, user_closed = false;
       int64_t drawn = 0;
+      double busy_ms = 0.0;  // drawing + encoding + showing
       auto last_sample = std::chrono::steady_clock::now();
       std::optional<std::chrono::steady_clock::time_point> frames_ended_at;
       spdlog::info("{}, {}, {}, {} -> {} ({})", dds::kFramesTopic, dds::kMotionTopic, dds::kSegmentationTopic, dds::kTracksTopic,
@@ -129,6 +130,7 @@ int view_main(int argc, char** argv) {
       };
       auto show = [&](std::vector<view::JoinedFrame> ready) {
         for (auto& j : ready) {
+          const auto t0 = std::chrono::steady_clock::now();
           const cv::Mat annotated = view::draw_overlay(j.frame.image, j.motion ? &*j.motion : nullptr,
                                                        j.segmentation ? &*j.segmentation : nullptr, j.tracks ? &*j.tracks : nullptr,
                                                        overlay);
@@ -140,7 +142,9 @@ int view_main(int argc, char** argv) {
             if (key == 'q' || key == 27) user_closed = true;
           }
           ++drawn;
-          health.frame_out(j.frame.index, 0.0, dds::latency_ms_since(j.frame.capture_time_ns));
+          const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+          busy_ms += ms;
+          health.frame_out(j.frame.index, ms, dds::latency_ms_since(j.frame.capture_time_ns));
         }
       };
 
@@ -175,7 +179,8 @@ int view_main(int argc, char** argv) {
       show(joiner.flush());
       if (video) {
         video->close();
-        spdlog::info("{} frames -> {}", video->frames_written(), video->path());
+        spdlog::info("{} frames -> {} ({:.1f} ms per frame to draw and encode)", video->frames_written(), video->path(),
+                     busy_ms / std::max<int64_t>(drawn, 1));
       }
       if (joiner.released_incomplete() > 0) {
         spdlog::info("{} of {} frames drawn before their tracks arrived", joiner.released_incomplete(), drawn);
