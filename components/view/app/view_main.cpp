@@ -128,6 +128,9 @@ int view_main(int argc, char** argv) {
         }
         return any;
       };
+      auto take_frames = [&]() {
+        return drain(frames, [&](Frame f) { health.frame_in(); joiner.add_frame(std::move(f)); }, [&] { frames_ended = true; });
+      };
       auto show = [&](std::vector<view::JoinedFrame> ready) {
         for (auto& j : ready) {
           const auto t0 = std::chrono::steady_clock::now();
@@ -144,13 +147,14 @@ int view_main(int argc, char** argv) {
           ++drawn;
           const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
           busy_ms += ms;
+          // Live readers keep only the newest frame: take what came while this one was drawn.
+          take_frames();
           health.frame_out(j.frame.index, ms, dds::latency_ms_since(j.frame.capture_time_ns));
         }
       };
 
       while (!shutdown_requested() && !user_closed) {
-        bool any = drain(frames, [&](Frame f) { health.frame_in(); joiner.add_frame(std::move(f)); },
-                         [&] { frames_ended = true; });
+        bool any = take_frames();
         any |= drain(motion, [&](MotionEstimate m) { joiner.add_motion(std::move(m)); }, [] {});
         any |= drain(segmentation, [&](SegmentationResult s) { joiner.add_segmentation(std::move(s)); }, [] {});
         any |= drain(tracks, [&](TrackList t) { joiner.add_tracks(std::move(t)); }, [&] { tracks_ended = true; });
