@@ -103,7 +103,8 @@ void draw_features(Canvas& canvas, const MotionEstimate& motion, const OverlayOp
 // Where a label goes: centred above the box if free, else below it, else further out or to the
 // side; never over an earlier label when any of those places is free (dense traffic would make
 // them unreadable).
-cv::Point place_label(const Canvas& canvas, const std::string& label, const cv::Rect2d& box, std::vector<cv::Rect>& taken) {
+cv::Point place_label(const Canvas& canvas, const std::string& label, const cv::Rect2d& box, std::vector<cv::Rect>& taken,
+                      bool& displaced) {
   int baseline = 0;
   const cv::Size size = cv::getTextSize(label, cv::FONT_HERSHEY_SIMPLEX, canvas.font_scale, 3, &baseline);
   const int centred = static_cast<int>(box.x + box.width / 2 - size.width / 2.0);
@@ -113,6 +114,7 @@ cv::Point place_label(const Canvas& canvas, const std::string& label, const cv::
   const std::array<int, 6> rows = {above, below, above - step, below + step, above - 2 * step, below + 2 * step};
   const std::array<int, 3> columns = {centred, centred + size.width / 2 + 4, centred - size.width / 2 - 4};
   auto rect_at = [&](int x, int y) { return cv::Rect(x, y - size.height - 1, size.width, size.height + baseline + 2); };
+  displaced = false;
   for (const int y : rows) {
     for (const int x : columns) {
       const cv::Rect rect = rect_at(x, y);
@@ -121,6 +123,7 @@ cv::Point place_label(const Canvas& canvas, const std::string& label, const cv::
       const bool free = std::none_of(taken.begin(), taken.end(), [&](const cv::Rect& r) { return (r & rect).area() > 0; });
       if (inside && free) {
         taken.push_back(rect);
+        displaced = (y != above && y != below) || x != centred;
         return {x, y};
       }
     }
@@ -154,7 +157,17 @@ void draw_tracks(Canvas& canvas, const TrackList& tracks, const OverlayOptions& 
   // Labels after every box, so no box is drawn over a label.
   std::vector<cv::Rect> taken;
   for (const auto& label : labels) {
-    canvas.text(label.text, place_label(canvas, label.text, label.box, taken), kConfirmedTrackColour);
+    bool displaced = false;
+    const cv::Point at = place_label(canvas, label.text, label.box, taken, displaced);
+    if (displaced) {
+      // A thin leader from the label to its box, so a label pushed aside still points at its vehicle.
+      const cv::Rect& rect = taken.back();
+      const cv::Point2d centre(label.box.x + label.box.width / 2, label.box.y + label.box.height / 2);
+      const cv::Point2d from(std::clamp(centre.x, double(rect.x), double(rect.x + rect.width)),
+                             std::clamp(centre.y, double(rect.y), double(rect.y + rect.height)));
+      cv::line(canvas.image, Canvas::fixed(from), Canvas::fixed(centre), kTentativeTrackColour, 1, cv::LINE_AA, kShift);
+    }
+    canvas.text(label.text, at, kConfirmedTrackColour);
   }
 }
 
@@ -194,8 +207,8 @@ cv::Mat draw_overlay(const cv::Mat& frame, const MotionEstimate* motion, const S
   }
   const int rows = canvas.image.rows;
   canvas.thickness = options.line_thickness > 0 ? options.line_thickness : std::max(1, static_cast<int>(std::lround(rows / 1000.0)));
-  // Text ~9 px tall on a 480-line frame, ~12 px from 1000 lines up: readable, not covering the traffic.
-  canvas.font_scale = std::clamp(rows / 1600.0, 0.35, 0.6);
+  // Text ~8 px tall up to 768 lines, ~12 px from 1140 lines up: readable, not covering the traffic.
+  canvas.font_scale = std::clamp(rows / 1900.0, 0.35, 0.6);
 
   if (motion) draw_features(canvas, *motion, options);
   if (segmentation && options.clusters) {
