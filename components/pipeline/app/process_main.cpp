@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <filesystem>
+#include <memory>
 
 #include <spdlog/spdlog.h>
 
@@ -16,6 +17,8 @@
 #include "uavmot/pipeline/chain.hpp"
 #include "uavmot/pipeline/progress.hpp"
 #include "uavmot/source/frame_source.hpp"
+#include "uavmot/view/overlay.hpp"
+#include "uavmot/view/video_sink.hpp"
 #include "process_recording.hpp"
 
 namespace uavmot {
@@ -23,7 +26,7 @@ namespace {
 
 int process_main(int argc, char** argv) {
   source::FrameSourceOptions input;
-  std::string out_dir, config_file, method, log_level = "info";
+  std::string out_dir, config_file, method, video_file, log_level = "info";
   double gsd_m = 0.0, fps = 0.0;
   bool quiet = false, from_recording = false;
 
@@ -42,6 +45,7 @@ int process_main(int argc, char** argv) {
     app.add_option("--start", input.start_frame, "first input frame (1-based)")->check(CLI::PositiveNumber);
     app.add_option("--count", input.max_frames, "number of frames (0 = all)")->check(CLI::NonNegativeNumber);
     app.add_option("--stream-id", input.stream_id, "stream id written into every result")->capture_default_str();
+    app.add_option("--video", video_file, "also write the annotated video (paper Fig. 6) to this mp4 file");
     app.add_flag("--quiet", quiet, "no progress line");
     app.add_option("--log-level", log_level)->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
 
@@ -71,6 +75,11 @@ int process_main(int argc, char** argv) {
       files.fps = options.scene.fps;
       files.gsd_m = options.scene.gsd_m;
       ResultFilesWriter writer(files);
+      std::unique_ptr<view::VideoSink> video;
+      view::OverlayOptions overlay;
+      overlay.gsd_m = options.scene.gsd_m;
+      overlay.fps = options.scene.fps;
+      if (!video_file.empty()) video = std::make_unique<view::VideoSink>(view::VideoSinkOptions{video_file, options.scene.fps, "mp4v"});
       pipeline::Progress progress("process", info.frame_count, !quiet);
       const auto start = std::chrono::steady_clock::now();
       int exit_code = kExitOk;
@@ -82,6 +91,7 @@ int process_main(int argc, char** argv) {
           writer.write_motion(out.motion);
           writer.write_segmentation(out.segmentation);
           writer.write_tracks(out.tracks);
+          if (video) video->write(view::draw_overlay(frame.image, &out.motion, &out.segmentation, &out.tracks, overlay));
           progress.update(++done);
         }
       } catch (const InputError& e) {
@@ -95,6 +105,7 @@ int process_main(int argc, char** argv) {
       summary.input = input.path;
       summary.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       writer.close(summary);
+      if (video) video->close();
       spdlog::info("{} frames in {:.1f} s ({:.1f} fps) -> {}", done, summary.wall_time_s,
                    done / std::max(summary.wall_time_s, 1e-9), out_dir);
       return exit_code;
