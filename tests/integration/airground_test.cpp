@@ -1,0 +1,246 @@
+// Air and ground as two hosts: two network namespaces joined by a veth pair, the air half of the
+// chain (bringup/air.yaml) in one, the ground half (bringup/ground.yaml) in the other, real
+// processes over real UDP. Needs root and `ip netns`; skipped otherwise.
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <regex>
+
+#include <gtest/gtest.h>
+
+#include "child_process.hpp"
+
+namespace uavmot {
+namespace {
+using testing::binary;
+using testing::ChildProcess;
+using testing::read_file;
+namespace fs = std::filesystem;
+
+const std::string kAirProfile = std::string(UAVMOT_SOURCE_DIR) + "/bringup/air.yaml";
+const std::string kGroundProfile = std::string(UAVMOT_SOURCE_DIR) + "/bringup/ground.yaml";
+constexpr const char* kIp = "/usr/bin/ip";
+constexpr int kFrames = 80;
+
+// Runs a shell command; returns its exit code.
+int sh(const std::string& command) {
+  const int status = std::system((command + " >/dev/null 2>&1").c_str());
+  return WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+}
+
+// Runs a shell command and returns what it printed.
+std::string capture(const std::string& command) {
+  std::string out;
+  if (FILE* pipe = ::popen((command + " 2>/dev/null").c_str(), "r")) {
+    char buffer[4096];
+    for (size_t n; (n = std::fread(buffer, 1, sizeof(buffer), pipe)) > 0;) out.append(buffer, n);
+    ::pclose(pipe);
+  }
+  return out;
+}
+
+int last_frame_in(const std::string& mot_file) {
+  std::ifstream in(mot_file);
+  int last = 0;
+  for (std::string line; std::getline(in, line);) last = std::max(last, std::stoi(line.substr(0, line.find(','))));
+  return last;
+}
+
+// Two namespaces, air (10.200.0.1) and ground (10.200.0.2), joined by a veth pair. Names carry
+// the test's pid so parallel runs never collide; everything is removed in the destructor.
+class Link {
+ public:
+  Link()
+      : air_("uavmot-air-" + std::to_string(::getpid())),
+        ground_("uavmot-ground-" + std::to_string(::getpid())),
+        air_dev_("vair" + std::to_string(::getpid() % 1000000)),
+        ground_dev_("vgnd" + std::to_string(::getpid() % 1000000)) {
+    remove();
+    const std::string ip = kIp;
+    ok_ = sh(ip + " netns add " + air_) == 0 && sh(ip + " netns add " + ground_) == 0 &&
+          sh(ip + " link add " + air_dev_ + " type veth peer name " + ground_dev_) == 0 &&
+          sh(ip + " link set " + air_dev_ + " netns " + air_) == 0 &&
+          sh(ip + " link set " + ground_dev_ + " netns " + ground_) == 0 &&
+          sh(ip + " -n " + air_ + " addr add 10.200.0.1/24 dev " + air_dev_) == 0 &&
+          sh(ip + " -n " + ground_ + " addr add 10.200.0.2/24 dev " + ground_dev_) == 0 &&
+          sh(ip + " -n " + air_ + " link set " + air_dev_ + " up") == 0 &&
+          sh(ip + " -n " + ground_ + " link set " + ground_dev_ + " up") == 0 &&
+          sh(ip + " -n " + air_ + " link set lo up") == 0 && sh(ip + " -n " + ground_ + " link set lo up") == 0;
+  }
+  ~Link() { remove(); }
+  Link(const Link&) = delete;
+  Link& operator=(const Link&) = delete;
+
+  bool ok() const { return ok_; }
+  const std::string& air() const { return air_; }
+  const std::string& ground() const { return ground_; }
+  const std::string& air_dev() const { return air_dev_; }
+  const std::string& ground_dev() const { return ground_dev_; }
+
+  // argv prefix that runs a command inside a namespace.
+  std::vector<std::string> in(const std::string& ns) const { return {kIp, "netns", "exec", ns}; }
+
+  // Bytes the air side sent into the link (the downlink plus the ground's acknowledgements' share is on rx).
+  uint64_t air_tx_bytes() const { return counter(air_, air_dev_, "tx_bytes"); }
+  uint64_t air_rx_bytes() const { return counter(air_, air_dev_, "rx_bytes"); }
+
+  // Drops `percent` % of the packets leaving each side into the link (both directions).
+  bool add_random_loss(int percent) const {
+    for (const auto& [ns, dev] : {std::pair{air_, air_dev_}, std::pair{ground_, ground_dev_}}) {
+      const std::string nft = std::string(kIp) + " netns exec " + ns + " nft ";
+      if (sh(nft + "add table inet uavmot_loss") != 0 ||
+          sh(nft + "'add chain inet uavmot_loss out { type filter hook output priority 0; }'") != 0 ||
+          sh(nft + "add rule inet uavmot_loss out oifname " + dev + " numgen random mod 100 '<' " + std::to_string(percent) +
+             " counter drop") != 0) {
+        return false;
+      }
+    }
+    return true;
+  }
+  // Packets the loss rules dropped on both sides.
+  uint64_t dropped_packets() const {
+    uint64_t total = 0;
+    const std::regex packets(R"(counter packets (\d+))");
+    for (const auto& ns : {air_, ground_}) {
+      const std::string out = capture(std::string(kIp) + " netns exec " + ns + " nft list table inet uavmot_loss");
+      std::smatch m;
+      if (std::regex_search(out, m, packets)) total += std::stoull(m[1]);
+    }
+    return total;
+  }
+
+  // Token bucket on the air's side of the link: the downlink carries at most `rate`.
+  bool limit_downlink(const std::string& rate) const {
+    return sh(std::string(kIp) + " netns exec " + air_ + " tc qdisc add dev " + air_dev_ + " root tbf rate " + rate +
+              " burst 32kbit latency 400ms") == 0;
+  }
+
+ private:
+  static uint64_t counter(const std::string& ns, const std::string& dev, const std::string& name) {
+    const std::string text = capture(std::string(kIp) + " netns exec " + ns + " cat /sys/class/net/" + dev + "/statistics/" + name);
+    return text.empty() ? 0 : std::stoull(text);
+  }
+  void remove() const {
+    sh(std::string(kIp) + " netns del " + air_);  // deleting a namespace deletes its veth end and the peer
+    sh(std::string(kIp) + " netns del " + ground_);
+  }
+
+  std::string air_, ground_, air_dev_, ground_dev_;
+  bool ok_ = false;
+};
+
+class AirGround : public ::testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    if (::geteuid() != 0 || sh(std::string(kIp) + " netns list") != 0) return;
+    root_ = testing::fresh_dir("airground");
+    sequence_ = root_ + "/paper";
+    ChildProcess sim({binary("uavmot-sim"), "--preset", "paper", "--seed", "11", "--frames", std::to_string(kFrames), "--out",
+                      sequence_},
+                     root_ + "/sim.log");
+    ASSERT_EQ(sim.wait(std::chrono::seconds(120)), 0) << sim.log();
+    ChildProcess process({binary("uavmot-process"), sequence_, "--out", root_ + "/process", "--quiet"}, root_ + "/process.log");
+    ASSERT_EQ(process.wait(std::chrono::seconds(240)), 0) << process.log();
+  }
+
+  void SetUp() override {
+    if (::geteuid() != 0) GTEST_SKIP() << "needs root for network namespaces";
+    if (sh(std::string(kIp) + " netns list") != 0) GTEST_SKIP() << "`ip netns` is not available";
+    ASSERT_FALSE(sequence_.empty());
+    link_ = std::make_unique<Link>();
+    ASSERT_TRUE(link_->ok()) << "could not create the air/ground namespaces";
+  }
+  void TearDown() override { link_.reset(); }
+
+  struct Run {
+    std::optional<int> air_code, ground_code;
+    std::string air_log, ground_log, out;
+    uint64_t air_tx_bytes = 0;
+  };
+
+  // The ground half first (it waits for its inputs), then the air half; both must end by themselves.
+  Run run_split(const std::string& name, int domain, const std::vector<std::string>& extra_sets = {},
+                std::chrono::seconds timeout = std::chrono::seconds(170)) {
+    Run run;
+    run.out = root_ + "/" + name;
+    const uint64_t tx_before = link_->air_tx_bytes();
+    auto args = [&](const std::string& profile, const std::string& out) {
+      std::vector<std::string> a = {binary("uavmot"), "launch", profile, "--input", sequence_, "--out", out,
+                                    "--set", "domain=" + std::to_string(domain)};
+      for (const auto& s : extra_sets) a.insert(a.end(), {"--set", s});
+      return a;
+    };
+    auto with_ns = [&](const std::string& ns, std::vector<std::string> argv) {
+      auto full = link_->in(ns);
+      full.insert(full.end(), argv.begin(), argv.end());
+      return full;
+    };
+    ChildProcess ground(with_ns(link_->ground(), args(kGroundProfile, run.out)), root_ + "/" + name + "_ground.log");
+    ChildProcess air(with_ns(link_->air(), args(kAirProfile, root_ + "/" + name + "_air")), root_ + "/" + name + "_air.log");
+    const auto deadline = std::chrono::steady_clock::now() + timeout;
+    run.ground_code = ground.wait(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()));
+    run.air_code = air.wait(std::max(std::chrono::milliseconds(1000), std::chrono::duration_cast<std::chrono::milliseconds>(
+                                                                          deadline - std::chrono::steady_clock::now())));
+    run.air_log = air.log();
+    run.ground_log = ground.log();
+    run.air_tx_bytes = link_->air_tx_bytes() - tx_before;
+    return run;
+  }
+
+  static std::string root_, sequence_;
+  std::unique_ptr<Link> link_;
+};
+std::string AirGround::root_, AirGround::sequence_;
+
+TEST_F(AirGround, LosslessSplitDeliversTheSameTracksAsInProcessAndNoFrames) {
+  const Run run = run_split("lossless", 61);
+  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log;
+  ASSERT_EQ(run.air_code, 0) << run.air_log;
+  const std::string expected = read_file(root_ + "/process/tracks.txt");
+  ASSERT_FALSE(expected.empty()) << "the in-process run found no tracks: nothing would be compared";
+  EXPECT_EQ(read_file(run.out + "/tracks.txt"), expected);
+  for (const char* file : {"tracks_obb.csv", "homographies.txt", "regions.txt"}) {
+    EXPECT_EQ(read_file(run.out + "/" + file), read_file(root_ + "/process/" + file)) << file;
+  }
+  // The results crossed the veth (not shared memory) and the frames did not: one 8-bit frame of
+  // the sequence alone is larger than everything the air sent per frame.
+  const auto frame_bytes = fs::file_size(fs::directory_iterator(sequence_ + "/img1")->path());
+  const uint64_t per_frame = run.air_tx_bytes / kFrames;
+  std::printf("[airground] lossless: air sent %llu bytes over the link, %llu per frame (%.3f Mbit/s at 25 fps)\n",
+              static_cast<unsigned long long>(run.air_tx_bytes), static_cast<unsigned long long>(per_frame),
+              per_frame * 25.0 * 8.0 / 1e6);
+  EXPECT_GT(run.air_tx_bytes, 20000u) << "almost nothing crossed the link: did the halves talk over shared memory?";
+  EXPECT_LT(per_frame, frame_bytes / 4) << "frames (" << frame_bytes << " bytes each, compressed on disk) crossed the link";
+}
+
+TEST_F(AirGround, FivePercentRandomLossLosesNoReliableSample) {
+  ASSERT_TRUE(link_->add_random_loss(5)) << "nft could not add the loss rule";
+  const Run run = run_split("loss", 62);
+  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log;
+  ASSERT_EQ(run.air_code, 0) << run.air_log;
+  const uint64_t dropped = link_->dropped_packets();
+  std::printf("[airground] loss: nft dropped %llu packets\n", static_cast<unsigned long long>(dropped));
+  EXPECT_GT(dropped, 10u) << "the loss rule dropped (almost) nothing: the test would not show anything";
+  EXPECT_EQ(read_file(run.out + "/tracks.txt"), read_file(root_ + "/process/tracks.txt"));
+  EXPECT_EQ(read_file(run.out + "/regions.txt"), read_file(root_ + "/process/regions.txt"));
+}
+
+TEST_F(AirGround, LiveChainKeepsRunningOverATwoMegabitLink) {
+  ASSERT_TRUE(link_->limit_downlink("2mbit")) << "tc could not add the tbf qdisc";
+  const Run run = run_split("tbf", 63, {"mode=live"});
+  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log;
+  ASSERT_EQ(run.air_code, 0) << run.air_log;
+  // Tracks kept coming to the end of the sequence.
+  EXPECT_GE(last_frame_in(run.out + "/tracks.txt"), kFrames - 10) << run.ground_log;
+  EXPECT_GE(last_frame_in(run.out + "/homographies.txt"), kFrames - 5);
+  const std::string tc = capture(std::string(kIp) + " netns exec " + link_->air() + " tc -s qdisc show dev " + link_->air_dev());
+  EXPECT_NE(tc.find("tbf"), std::string::npos) << tc;
+  std::printf("[airground] tbf: air sent %llu bytes; %s\n", static_cast<unsigned long long>(run.air_tx_bytes), tc.c_str());
+}
+
+}  // namespace
+}  // namespace uavmot
