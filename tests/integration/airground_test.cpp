@@ -6,9 +6,13 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <csignal>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <regex>
+#include <sstream>
+#include <thread>
 
 #include <gtest/gtest.h>
 
@@ -113,6 +117,21 @@ class Link {
     return total;
   }
 
+  // Drops every multicast packet in and out of both hosts: discovery must do without it.
+  bool block_multicast() const {
+    for (const auto& ns : {air_, ground_}) {
+      const std::string nft = std::string(kIp) + " netns exec " + ns + " nft ";
+      if (sh(nft + "add table inet uavmot_mcast") != 0 ||
+          sh(nft + "'add chain inet uavmot_mcast out { type filter hook output priority 0; }'") != 0 ||
+          sh(nft + "'add chain inet uavmot_mcast in { type filter hook input priority 0; }'") != 0 ||
+          sh(nft + "add rule inet uavmot_mcast out ip daddr 224.0.0.0/4 drop") != 0 ||
+          sh(nft + "add rule inet uavmot_mcast in ip daddr 224.0.0.0/4 drop") != 0) {
+        return false;
+      }
+    }
+    return true;
+  }
+
   // Token bucket on the air's side of the link: the downlink carries at most `rate`.
   bool limit_downlink(const std::string& rate) const {
     return sh(std::string(kIp) + " netns exec " + air_ + " tc qdisc add dev " + air_dev_ + " root tbf rate " + rate +
@@ -125,6 +144,11 @@ class Link {
     return text.empty() ? 0 : std::stoull(text);
   }
   void remove() const {
+    // Whatever still runs in our namespaces was started by this test: end it by pid first.
+    for (const auto& ns : {air_, ground_}) {
+      std::istringstream pids(capture(std::string(kIp) + " netns pids " + ns));
+      for (pid_t pid; pids >> pid;) ::kill(pid, SIGKILL);
+    }
     sh(std::string(kIp) + " netns del " + air_);  // deleting a namespace deletes its veth end and the peer
     sh(std::string(kIp) + " netns del " + ground_);
   }
@@ -164,7 +188,7 @@ class AirGround : public ::testing::Test {
 
   // The ground half first (it waits for its inputs), then the air half; both must end by themselves.
   Run run_split(const std::string& name, int domain, const std::vector<std::string>& extra_sets = {},
-                std::chrono::seconds timeout = std::chrono::seconds(170)) {
+                std::chrono::seconds timeout = std::chrono::seconds(170), const std::function<void()>& while_running = {}) {
     Run run;
     run.out = root_ + "/" + name;
     const uint64_t tx_before = link_->air_tx_bytes();
@@ -182,9 +206,17 @@ class AirGround : public ::testing::Test {
     ChildProcess ground(with_ns(link_->ground(), args(kGroundProfile, run.out)), root_ + "/" + name + "_ground.log");
     ChildProcess air(with_ns(link_->air(), args(kAirProfile, root_ + "/" + name + "_air")), root_ + "/" + name + "_air.log");
     const auto deadline = std::chrono::steady_clock::now() + timeout;
+    if (while_running) while_running();
     run.ground_code = ground.wait(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()));
     run.air_code = air.wait(std::max(std::chrono::milliseconds(1000), std::chrono::duration_cast<std::chrono::milliseconds>(
                                                                           deadline - std::chrono::steady_clock::now())));
+    // A half that did not end by itself is stopped the way an operator would (the launcher stops its children).
+    for (ChildProcess* p : {&ground, &air}) {
+      if (!p->wait(std::chrono::milliseconds(0)).has_value()) {
+        p->signal(SIGTERM);
+        p->wait(std::chrono::seconds(20));
+      }
+    }
     run.air_log = air.log();
     run.ground_log = ground.log();
     run.air_tx_bytes = link_->air_tx_bytes() - tx_before;
@@ -240,6 +272,37 @@ TEST_F(AirGround, LiveChainKeepsRunningOverATwoMegabitLink) {
   const std::string tc = capture(std::string(kIp) + " netns exec " + link_->air() + " tc -s qdisc show dev " + link_->air_dev());
   EXPECT_NE(tc.find("tbf"), std::string::npos) << tc;
   std::printf("[airground] tbf: air sent %llu bytes; %s\n", static_cast<unsigned long long>(run.air_tx_bytes), tc.c_str());
+}
+
+// Fast DDS Discovery Server in the ground namespace instead of multicast, which the link drops.
+TEST_F(AirGround, DiscoveryServerReplacesBlockedMulticastAndSurvivesARestart) {
+  ASSERT_TRUE(link_->block_multicast()) << "nft could not block multicast";
+  const std::string server_log = root_ + "/discovery_server.log";
+  auto start_server = [&] {
+    auto argv = link_->in(link_->ground());
+    argv.insert(argv.end(), {"/usr/bin/fast-discovery-server", "-i", "0", "-l", "10.200.0.2", "-p", "11811"});
+    return std::make_unique<ChildProcess>(argv, server_log);
+  };
+  // Without the server the halves never find each other: the ground is still waiting after 12 s.
+  {
+    const Run run = run_split("no_server", 64, {}, std::chrono::seconds(12));
+    EXPECT_FALSE(run.ground_code.has_value()) << "the halves met with multicast blocked and no server:\n" << run.ground_log;
+    EXPECT_FALSE(fs::exists(run.out + "/tracks.txt") && !read_file(run.out + "/tracks.txt").empty());
+  }
+  auto server = start_server();
+  std::this_thread::sleep_for(std::chrono::milliseconds(500));
+  // The server dies mid-run and comes back; the matched endpoints carry on and the run completes.
+  const Run run = run_split("discovery_server", 65, {"discovery_server=10.200.0.2:11811"}, std::chrono::seconds(170), [&] {
+    std::this_thread::sleep_for(std::chrono::seconds(5));
+    server->signal(SIGTERM);
+    ASSERT_TRUE(server->wait(std::chrono::seconds(10)).has_value());
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    server = start_server();
+  });
+  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log;
+  ASSERT_EQ(run.air_code, 0) << run.air_log;
+  EXPECT_EQ(read_file(run.out + "/tracks.txt"), read_file(root_ + "/process/tracks.txt"));
+  EXPECT_NE(read_file(server_log).find("Server is running"), std::string::npos) << read_file(server_log);
 }
 
 }  // namespace
