@@ -64,7 +64,7 @@ EOF
 
 # publish / subscribe topics per node
 grant() {  # name "published topics" "subscribed topics"
-  printf '    <grant name="%s">\n      <subject_name>C=DE, O=uavmot, CN=%s</subject_name>\n' "$1" "$1"
+  printf '    <grant name="%s">\n      <subject_name>CN=%s, O=uavmot, C=DE</subject_name>\n' "$1" "$1"
   printf '      <validity><not_before>2020-01-01T00:00:00</not_before><not_after>2120-01-01T00:00:00</not_after></validity>\n'
   printf '      <allow_rule>\n        <domains><id_range><min>0</min><max>232</max></id_range></domains>\n'
   printf '        <publish><topics>'

@@ -2,7 +2,16 @@
 // chain (bringup/air.yaml) in one, the ground half (bringup/ground.yaml) in the other, real
 // processes over real UDP. Needs root and `ip netns`; skipped otherwise.
 
+#include <arpa/inet.h>
+#include <fcntl.h>
+#include <linux/if_ether.h>
+#include <linux/if_packet.h>
+#include <net/if.h>
+#include <sched.h>
+#include <sys/socket.h>
 #include <unistd.h>
+
+#include <atomic>
 
 #include <cstdio>
 #include <cstdlib>
@@ -157,6 +166,54 @@ class Link {
   bool ok_ = false;
 };
 
+// Every packet the air (10.200.0.1) sends over the link, read with a raw packet socket from a
+// thread that entered the namespace (network namespaces are per thread). No tcpdump needed.
+class LinkCapture {
+ public:
+  LinkCapture(const std::string& ns, const std::string& dev) {
+    thread_ = std::thread([this, ns, dev] {
+      const int ns_fd = ::open(("/var/run/netns/" + ns).c_str(), O_RDONLY);
+      if (ns_fd < 0 || ::setns(ns_fd, CLONE_NEWNET) != 0) return;
+      ::close(ns_fd);
+      const int fd = ::socket(AF_PACKET, SOCK_RAW, htons(ETH_P_ALL));
+      if (fd < 0) return;
+      sockaddr_ll address{};
+      address.sll_family = AF_PACKET;
+      address.sll_protocol = htons(ETH_P_ALL);
+      address.sll_ifindex = static_cast<int>(::if_nametoindex(dev.c_str()));
+      timeval timeout{0, 100000};
+      ::setsockopt(fd, SOL_SOCKET, SO_RCVTIMEO, &timeout, sizeof(timeout));
+      if (::bind(fd, reinterpret_cast<sockaddr*>(&address), sizeof(address)) != 0) { ::close(fd); return; }
+      started_ = true;
+      std::vector<char> packet(65536);
+      while (!stop_) {
+        const ssize_t n = ::recv(fd, packet.data(), packet.size(), 0);
+        // Only what the air sends (IPv4 source 10.200.0.1): the downlink.
+        if (n > 30 && static_cast<unsigned char>(packet[12]) == 0x08 && packet[13] == 0x00 &&
+            static_cast<unsigned char>(packet[26]) == 10 && static_cast<unsigned char>(packet[27]) == 200 &&
+            packet[28] == 0 && packet[29] == 1) {
+          bytes_.append(packet.data(), static_cast<size_t>(n));
+        }
+      }
+      ::close(fd);
+    });
+    for (int i = 0; i < 100 && !started_; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
+  }
+  ~LinkCapture() { stop(); }
+  bool started() const { return started_; }
+  // Stops capturing; returns everything captured.
+  const std::string& stop() {
+    stop_ = true;
+    if (thread_.joinable()) thread_.join();
+    return bytes_;
+  }
+
+ private:
+  std::thread thread_;
+  std::atomic<bool> started_{false}, stop_{false};
+  std::string bytes_;
+};
+
 class AirGround : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
@@ -184,6 +241,8 @@ class AirGround : public ::testing::Test {
     std::optional<int> air_code, ground_code;
     std::string air_log, ground_log, out;
     uint64_t air_tx_bytes = 0;
+    std::string link_bytes;  // every packet the air sent over the link
+    bool captured = false;
   };
 
   // The ground half first (it waits for its inputs), then the air half; both must end by themselves.
@@ -205,6 +264,7 @@ class AirGround : public ::testing::Test {
     };
     ChildProcess ground(with_ns(link_->ground(), args(kGroundProfile, run.out)), root_ + "/" + name + "_ground.log");
     ChildProcess air(with_ns(link_->air(), args(kAirProfile, root_ + "/" + name + "_air")), root_ + "/" + name + "_air.log");
+    LinkCapture capture(link_->ground(), link_->ground_dev());
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     if (while_running) while_running();
     run.ground_code = ground.wait(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()));
@@ -217,6 +277,8 @@ class AirGround : public ::testing::Test {
         p->wait(std::chrono::seconds(20));
       }
     }
+    run.link_bytes = capture.stop();
+    run.captured = capture.started();
     run.air_log = air.log();
     run.ground_log = ground.log();
     run.air_tx_bytes = link_->air_tx_bytes() - tx_before;
@@ -245,6 +307,11 @@ TEST_F(AirGround, LosslessSplitDeliversTheSameTracksAsInProcessAndNoFrames) {
   std::printf("[airground] lossless: air sent %llu bytes over the link, %llu per frame (%.3f Mbit/s at 25 fps)\n",
               static_cast<unsigned long long>(run.air_tx_bytes), static_cast<unsigned long long>(per_frame),
               per_frame * 25.0 * 8.0 / 1e6);
+  // Without security the stream id and topic names are readable on the wire (the control for the
+  // security test, which expects them gone).
+  ASSERT_TRUE(run.captured);
+  EXPECT_NE(run.link_bytes.find("uav1"), std::string::npos);
+  EXPECT_NE(run.link_bytes.find("uavmot/segmentation"), std::string::npos);
   EXPECT_GT(run.air_tx_bytes, 20000u) << "almost nothing crossed the link: did the halves talk over shared memory?";
   EXPECT_LT(per_frame, frame_bytes / 4) << "frames (" << frame_bytes << " bytes each, compressed on disk) crossed the link";
 }
@@ -303,6 +370,45 @@ TEST_F(AirGround, DiscoveryServerReplacesBlockedMulticastAndSurvivesARestart) {
   ASSERT_EQ(run.air_code, 0) << run.air_log;
   EXPECT_EQ(read_file(run.out + "/tracks.txt"), read_file(root_ + "/process/tracks.txt"));
   EXPECT_NE(read_file(server_log).find("Server is running"), std::string::npos) << read_file(server_log);
+}
+
+// DDS Security on (tools/make_security.sh, --set qos_dir=DIR): the chain still delivers identical
+// tracks, nothing readable crosses the link, and neither a participant without a certificate
+// nor one whose permissions do not allow it reads anything.
+TEST_F(AirGround, SecurityEncryptsTheLinkAndKeepsOutsidersAndUnauthorisedNodesBlind) {
+  const std::string security = root_ + "/security";
+  ChildProcess make({"/bin/sh", std::string(UAVMOT_SOURCE_DIR) + "/tools/make_security.sh", security}, root_ + "/make_security.log");
+  ASSERT_EQ(make.wait(std::chrono::seconds(60)), 0) << make.log();
+  auto outsider = [&](const std::string& name, const std::map<std::string, std::string>& env) {
+    auto argv = link_->in(link_->ground());
+    argv.insert(argv.end(), {"/usr/bin/env"});
+    for (const auto& [k, v] : env) argv.push_back(k + "=" + v);
+    argv.insert(argv.end(), {binary("uavmot-sink"), "--out", root_ + "/" + name, "--domain", "66", "--transport", "udp"});
+    return std::make_unique<ChildProcess>(argv, root_ + "/" + name + ".log");
+  };
+  // No certificate at all (the plain profiles), and the source's identity, which may read only health.
+  auto plain = outsider("outsider_plain", {});
+  auto unauthorised = outsider("outsider_source_identity", {{"UAVMOT_QOS_PROFILES", security + "/source.xml"}});
+  const Run run = run_split("secure", 66, {"qos_dir=" + security});
+  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log;
+  ASSERT_EQ(run.air_code, 0) << run.air_log;
+  EXPECT_EQ(read_file(run.out + "/tracks.txt"), read_file(root_ + "/process/tracks.txt"));
+  ASSERT_TRUE(run.captured);
+  EXPECT_GT(run.link_bytes.size(), 100000u) << "the capture saw (almost) nothing";
+  EXPECT_EQ(run.link_bytes.find("uav1"), std::string::npos) << "the stream id crossed the link in plain text";
+  EXPECT_EQ(run.link_bytes.find("uavmot/segmentation"), std::string::npos) << "a topic name crossed the link in plain text";
+  // The outsiders got no sample: still waiting (no end of stream), nothing written.
+  for (auto* p : {plain.get(), unauthorised.get()}) {
+    EXPECT_FALSE(p->wait(std::chrono::milliseconds(0)).has_value()) << p->log();
+    p->signal(SIGTERM);
+    p->wait(std::chrono::seconds(10));
+  }
+  for (const char* name : {"outsider_plain", "outsider_source_identity"}) {
+    const std::string tracks = root_ + "/" + name + "/tracks.txt";
+    EXPECT_TRUE(!fs::exists(tracks) || read_file(tracks).empty()) << name << " read tracks";
+    const std::string regions = root_ + "/" + name + "/regions.txt";
+    EXPECT_TRUE(!fs::exists(regions) || read_file(regions).empty()) << name << " read regions";
+  }
 }
 
 }  // namespace
