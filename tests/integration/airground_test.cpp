@@ -247,7 +247,8 @@ class AirGround : public ::testing::Test {
 
   // The ground half first (it waits for its inputs), then the air half; both must end by themselves.
   Run run_split(const std::string& name, int domain, const std::vector<std::string>& extra_sets = {},
-                std::chrono::seconds timeout = std::chrono::seconds(170), const std::function<void()>& while_running = {}) {
+                std::chrono::seconds timeout = std::chrono::seconds(170),
+                const std::function<void(const ChildProcess& air)>& while_running = {}) {
     Run run;
     run.out = root_ + "/" + name;
     const uint64_t tx_before = link_->air_tx_bytes();
@@ -266,7 +267,7 @@ class AirGround : public ::testing::Test {
     ChildProcess air(with_ns(link_->air(), args(kAirProfile, root_ + "/" + name + "_air")), root_ + "/" + name + "_air.log");
     LinkCapture capture(link_->ground(), link_->ground_dev());
     const auto deadline = std::chrono::steady_clock::now() + timeout;
-    if (while_running) while_running();
+    if (while_running) while_running(air);
     run.ground_code = ground.wait(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()));
     run.air_code = air.wait(std::max(std::chrono::milliseconds(1000), std::chrono::duration_cast<std::chrono::milliseconds>(
                                                                           deadline - std::chrono::steady_clock::now())));
@@ -366,8 +367,14 @@ TEST_F(AirGround, DiscoveryServerReplacesBlockedMulticastAndSurvivesARestart) {
   auto server = start_server();
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   // The server dies mid-run and comes back; the matched endpoints carry on and the run completes.
-  const Run run = run_split("discovery_server", 65, {"discovery_server=10.200.0.2:11811"}, std::chrono::seconds(170), [&] {
-    std::this_thread::sleep_for(std::chrono::seconds(5));
+  const Run run = run_split("discovery_server", 65, {"discovery_server=10.200.0.2:11811"}, std::chrono::seconds(170),
+                            [&](const ChildProcess&) {
+    // Once the chain runs (every endpoint matched, results flowing: ~10 frames' worth crossed the link).
+    const uint64_t start = link_->air_tx_bytes();
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(90);
+    while (link_->air_tx_bytes() - start < 200000 && std::chrono::steady_clock::now() < until) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
     server->signal(SIGTERM);
     ASSERT_TRUE(server->wait(std::chrono::seconds(10)).has_value());
     std::this_thread::sleep_for(std::chrono::seconds(1));
