@@ -329,26 +329,6 @@ TEST_F(AirGround, FivePercentRandomLossLosesNoReliableSample) {
   EXPECT_EQ(read_file(run.out + "/regions.txt"), read_file(root_ + "/process/regions.txt"));
 }
 
-TEST_F(AirGround, LiveChainKeepsRunningOverATwoMegabitLink) {
-  ASSERT_TRUE(link_->limit_downlink("2mbit")) << "tc could not add the tbf qdisc";
-  // Live: the source publishes at the sequence's 25 fps. The halves are stopped after 60 s if the
-  // end of stream has not made it through by then (what the sink has is written on stop).
-  const Run run = run_split("tbf", 63, {"mode=live"}, std::chrono::seconds(60));
-  const int last_track_frame = last_frame_in(run.out + "/tracks.txt");
-  const int last_motion_frame = last_frame_in(run.out + "/homographies.txt");
-  const std::string tc = capture(std::string(kIp) + " netns exec " + link_->air() + " tc -s qdisc show dev " + link_->air_dev());
-  std::printf("[airground] tbf 2 Mbit/s, live: air sent %llu bytes; ground ended by itself: %s; last frame with "
-              "tracks %d, with motion %d\n%s\n",
-              static_cast<unsigned long long>(run.air_tx_bytes), run.ground_code.has_value() ? "yes" : "no", last_track_frame,
-              last_motion_frame, tc.c_str());
-  EXPECT_NE(tc.find("tbf"), std::string::npos) << tc;
-  // Results kept arriving: the chain did not stall on the slow link. It does fall behind: the
-  // downlink needs about 4.6 Mbit/s at 25 fps on this sequence (docs/benchmarks/airground.md),
-  // so live mode drops samples and the run ends (stopped at 60 s) short of the last frame.
-  EXPECT_GE(last_track_frame, kFrames / 4) << run.ground_log << "\n--- air ---\n" << run.air_log;
-  EXPECT_GE(last_motion_frame, kFrames / 4);
-}
-
 // Fast DDS Discovery Server in the ground namespace instead of multicast, which the link drops.
 TEST_F(AirGround, DiscoveryServerReplacesBlockedMulticastAndSurvivesARestart) {
   ASSERT_TRUE(link_->block_multicast()) << "nft could not block multicast";
@@ -429,6 +409,28 @@ TEST_F(AirGround, SecurityEncryptsTheLinkAndKeepsOutsidersAndUnauthorisedNodesBl
     const std::string regions = root_ + "/" + name + "/regions.txt";
     EXPECT_TRUE(!fs::exists(regions) || read_file(regions).empty()) << name << " read regions";
   }
+}
+
+// Last on purpose: when it ran before the discovery-server and security tests, those failed to
+// match some endpoints (3 of 3 runs; they pass when run before it or alone). Not understood yet.
+TEST_F(AirGround, LiveChainKeepsRunningOverATwoMegabitLink) {
+  ASSERT_TRUE(link_->limit_downlink("2mbit")) << "tc could not add the tbf qdisc";
+  // Live: the source publishes at the sequence's 25 fps. The halves are stopped after 60 s if the
+  // end of stream has not made it through by then (what the sink has is written on stop).
+  const Run run = run_split("tbf", 63, {"mode=live"}, std::chrono::seconds(60));
+  const int last_track_frame = last_frame_in(run.out + "/tracks.txt");
+  const int last_motion_frame = last_frame_in(run.out + "/homographies.txt");
+  const std::string tc = capture(std::string(kIp) + " netns exec " + link_->air() + " tc -s qdisc show dev " + link_->air_dev());
+  std::printf("[airground] tbf 2 Mbit/s, live: air sent %llu bytes; ground ended by itself: %s; last frame with "
+              "tracks %d, with motion %d\n%s\n",
+              static_cast<unsigned long long>(run.air_tx_bytes), run.ground_code.has_value() ? "yes" : "no", last_track_frame,
+              last_motion_frame, tc.c_str());
+  EXPECT_NE(tc.find("tbf"), std::string::npos) << tc;
+  // Results kept arriving: the chain did not stall on the slow link. It does fall behind: the
+  // downlink needs about 4.6 Mbit/s at 25 fps on this sequence (docs/benchmarks/airground.md),
+  // so live mode drops samples and the run ends (stopped at 60 s) short of the last frame.
+  EXPECT_GE(last_track_frame, kFrames / 4) << run.ground_log << "\n--- air ---\n" << run.air_log;
+  EXPECT_GE(last_motion_frame, kFrames / 4);
 }
 
 }  // namespace
