@@ -78,6 +78,11 @@ Profile load_profile(const std::string& file) {
 Profile resolve(const Profile& profile, const std::map<std::string, std::string>& variables) {
   std::map<std::string, std::string> all = profile.variables;
   for (const auto& [k, v] : variables) all[k] = v;
+  // A profile's default may name other variables (e.g. "${profile_dir}/qos"): one level deep.
+  const auto given = all;
+  for (auto& [k, v] : all) {
+    if (profile.variables.count(k) && !variables.count(k)) v = substitute(v, given, profile.file + ": variable '" + k + "'");
+  }
   Profile out = profile;
   for (auto& arg : out.common_args) arg = substitute(arg, all, profile.file + ": common_args");
   for (auto& p : out.processes) {

@@ -26,7 +26,7 @@ std::string error_of(const std::function<void()>& f) {
 }
 
 TEST(LaunchProfile, ShippedProfilesLoadAndResolve) {
-  for (const char* name : {"local.yaml"}) {
+  for (const char* name : {"local.yaml", "air.yaml", "ground.yaml"}) {
     const auto profile = load_profile(std::string(UAVMOT_SOURCE_DIR) + "/bringup/" + name);
     EXPECT_FALSE(profile.processes.empty()) << name;
     const auto resolved = resolve(profile, {{"input", "seq"}, {"out", "o"}, {"gsd", "0.35"}, {"fps", "25"}, {"profile_dir", "."}, {"run_dir", "/tmp/r"}});
@@ -66,6 +66,16 @@ processes:
   EXPECT_TRUE(profile.processes[0].stop_on_failure);
   EXPECT_TRUE(profile.processes[1].required);
   EXPECT_FALSE(profile.processes[1].common_args);
+}
+
+TEST(LaunchProfile, DefaultsMayNameOtherVariables) {
+  const auto file = write_profile("launch_nested.yaml",
+                                  "variables:\n  qos_dir: \"${profile_dir}/qos\"\nprocesses:\n"
+                                  "  - name: a\n    command: a\n    env: {Q: \"${qos_dir}/a.xml\"}\n");
+  const auto p = load_profile(file);
+  EXPECT_EQ(resolve(p, {{"profile_dir", "/b"}}).processes.at(0).env.at("Q"), "/b/qos/a.xml");
+  // A value given on the command line is taken as it is.
+  EXPECT_EQ(resolve(p, {{"profile_dir", "/b"}, {"qos_dir", "/sec"}}).processes.at(0).env.at("Q"), "/sec/a.xml");
 }
 
 TEST(LaunchProfile, TypoIsNamedWithItsLine) {
