@@ -8,7 +8,7 @@
 #   uavmot launch bringup/air.yaml ...    --set qos_dir=OUT_DIR
 #
 # Access control: only air nodes (source, motion, segmentation) may publish frames and motion
-# estimates, only tracking may publish tracks; every node may publish and read health.
+# estimates, only tracking may publish tracks and its state; every node may publish and read health.
 # Fast DDS needs certificate paths as file:// + an absolute path.
 set -eu
 
@@ -78,7 +78,7 @@ grant() {  # name "published topics" "subscribed topics"
   grant source "uavmot/frames uavmot/health" "uavmot/health"
   grant motion "uavmot/motion uavmot/health" "uavmot/frames uavmot/health"
   grant segmentation "uavmot/segmentation uavmot/health" "uavmot/frames uavmot/motion uavmot/health"
-  grant tracking "uavmot/tracks uavmot/health" "uavmot/motion uavmot/segmentation uavmot/health"
+  grant tracking "uavmot/tracks uavmot/tracker_state uavmot/health" "uavmot/motion uavmot/segmentation uavmot/health"
   grant sink "uavmot/health" "uavmot/motion uavmot/segmentation uavmot/tracks uavmot/health"
   printf '  </permissions>\n</dds>\n'
 } > permissions.xml

@@ -3,6 +3,7 @@
 // (--window), otherwise into an mp4 (--out). Live mode by default: it never holds the chain back.
 
 #include <cstdlib>
+#include <limits>
 #include <memory>
 #include <optional>
 
@@ -57,8 +58,11 @@ int view_main(int argc, char** argv) {
     lag_option = app.add_option("--max-lag", max_lag, "draw a frame without its tracks once it is this many frames old (live; lossless: 250)")
                      ->check(CLI::Range(0, 1000))
                      ->capture_default_str();
-    app.add_option("--linger", linger_s, "after the frames ended, wait this long for the last results (s)")
-        ->check(CLI::NonNegativeNumber)->capture_default_str();
+    auto* linger_option = app.add_option("--linger", linger_s,
+                                         "after the frames ended, wait this long for the last results (s; live mode; "
+                                         "lossless waits for the tracks' end of stream)")
+                              ->check(CLI::NonNegativeNumber)
+                              ->capture_default_str();
     app.add_option("--idle-timeout", idle_timeout_s, "stop if nothing arrives for this long once started (s, 0 = never)")
         ->check(CLI::NonNegativeNumber);
     dds::add_node_options(app, node);
@@ -66,6 +70,10 @@ int view_main(int argc, char** argv) {
       dds::finalize(node, "view");
       // Lossless: every result comes, so wait for it (the chain's backpressure bounds the lag).
       if (node.dds.mode == dds::DeliveryMode::Lossless && lag_option->count() == 0) max_lag = 250;
+      // Lossless: the last tracks come however far tracking runs behind; --idle-timeout still applies.
+      if (node.dds.mode == dds::DeliveryMode::Lossless && linger_option->count() == 0) {
+        linger_s = std::numeric_limits<double>::infinity();
+      }
       install_shutdown_handler();
       const char* display = std::getenv("DISPLAY");
       const bool has_display = display != nullptr && *display != '\0';
