@@ -38,7 +38,8 @@ int view_main(int argc, char** argv) {
   view::OverlayOptions overlay;
   bool window = false;
   int max_lag = 10;
-  CLI::Option* lag_option = nullptr;  // outlives the setup lambda: the body reads it
+  CLI::Option* lag_option = nullptr;  // these outlive the setup lambda: the body reads them
+  CLI::Option* linger_option = nullptr;
   double linger_s = 2.0, idle_timeout_s = 0.0;
   return run_app(argc, argv, "view", "draw frames, features, regions and tracks (window or mp4)", [&](CLI::App& app) {
     app.add_option("--out", out_file, "write the annotated video to this mp4 file");
@@ -58,11 +59,11 @@ int view_main(int argc, char** argv) {
     lag_option = app.add_option("--max-lag", max_lag, "draw a frame without its tracks once it is this many frames old (live; lossless: 250)")
                      ->check(CLI::Range(0, 1000))
                      ->capture_default_str();
-    auto* linger_option = app.add_option("--linger", linger_s,
-                                         "after the frames ended, wait this long for the last results (s; live mode; "
-                                         "lossless waits for the tracks' end of stream)")
-                              ->check(CLI::NonNegativeNumber)
-                              ->capture_default_str();
+    linger_option = app.add_option("--linger", linger_s,
+                                   "after the frames ended, wait this long for the last results (s; live mode; "
+                                   "lossless waits for the tracks' end of stream)")
+                        ->check(CLI::NonNegativeNumber)
+                        ->capture_default_str();
     app.add_option("--idle-timeout", idle_timeout_s, "stop if nothing arrives for this long once started (s, 0 = never)")
         ->check(CLI::NonNegativeNumber);
     dds::add_node_options(app, node);
