@@ -8,6 +8,7 @@
 // Prints a markdown table: per-frame time (median, mean, p90) and mean transfer error vs truth.
 #include <algorithm>
 #include <chrono>
+#include <cstdlib>
 #include <ctime>
 #include <cstdio>
 #include <functional>
@@ -184,8 +185,11 @@ int main(int argc, char** argv) {
     results.push_back(run_uavmot("uavmot", true));
     if (only_uavmot) {
       const auto& r = results[0];
-      std::printf("uavmot: CPU median %.2f ms, mean %.2f ms, max %.2f ms; error %.4f px\n", percentile(r.ms, 0.5),
-                  mean(r.ms), percentile(r.ms, 1.0), mean(r.error_px));
+      std::printf("uavmot: CPU median %.2f ms, mean %.2f ms, p90 %.2f ms, max %.2f ms; error %.4f px\n",
+                  percentile(r.ms, 0.5), mean(r.ms), percentile(r.ms, 0.9), percentile(r.ms, 1.0), mean(r.error_px));
+      if (std::getenv("UAVMOT_BENCH_PER_FRAME")) {
+        for (size_t i = 0; i < r.ms.size(); ++i) std::printf("frame %zu: %.2f ms\n", i + 2, r.ms[i]);
+      }
       return 0;
     }
     results.push_back(run_uavmot("uavmot, no Ceres refinement", false));

@@ -112,25 +112,33 @@ std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const std::vector<
 
   const cv::Rect usable(o.border_px, o.border_px, gray.cols - 2 * o.border_px, gray.rows - 2 * o.border_px);
   if (usable.width <= 0 || usable.height <= 0) return added;
-  for (int cy = 0; cy < rows && budget > 0; ++cy) {
-    for (int cx = 0; cx < cols && budget > 0; ++cx) {
-      const int index = cy * cols + cx;
-      if (buckets.count(index) >= o.features_per_cell) continue;
-      if (retry_at && (*retry_at)[static_cast<size_t>(index)] > call) continue;
-      const cv::Rect area = cv::Rect(cx * cell, cy * cell, cell, cell) & usable;
-      if (area.width <= 0 || area.height <= 0) continue;
-      const auto candidates = cell_candidates(gray, area, o);
-      if (retry_at) {
-        (*retry_at)[static_cast<size_t>(index)] = candidates.empty() ? call + o.empty_cell_retry_frames : 0;
-      }
-      for (const auto& c : candidates) {
-        const cv::Point2f p(static_cast<float>(c.x), static_cast<float>(c.y));
-        if (!buckets.is_free(p)) continue;
-        buckets.add(p);
-        added.push_back(p);
-        --budget;
-        if (buckets.count(index) >= o.features_per_cell || budget <= 0) break;
-      }
+  std::vector<int> to_search;
+  for (int index = 0; index < cols * rows; ++index) {
+    if (buckets.count(index) >= o.features_per_cell) continue;
+    if (retry_at && (*retry_at)[static_cast<size_t>(index)] > call) continue;
+    to_search.push_back(index);
+  }
+  for (const int index : to_search) {
+    if (budget <= 0) break;
+    const int cx = index % cols, cy = index / cols;
+    const cv::Rect area = cv::Rect(cx * cell, cy * cell, cell, cell) & usable;
+    if (area.width <= 0 || area.height <= 0) continue;
+    const auto candidates = cell_candidates(gray, area, o);
+    bool placed = false;
+    for (const auto& c : candidates) {
+      const cv::Point2f p(static_cast<float>(c.x), static_cast<float>(c.y));
+      if (!buckets.is_free(p)) continue;
+      buckets.add(p);
+      added.push_back(p);
+      placed = true;
+      --budget;
+      if (buckets.count(index) >= o.features_per_cell || budget <= 0) break;
+    }
+    if (retry_at) {
+      // A cell that gave nothing (no corner, or every corner too close to a live feature) waits;
+      // the wait is staggered by cell so the retries do not all land on the same frame.
+      const int wait = o.empty_cell_retry_frames;
+      (*retry_at)[static_cast<size_t>(index)] = placed ? 0 : call + wait + (wait > 1 ? index % wait : 0);
     }
   }
   return added;

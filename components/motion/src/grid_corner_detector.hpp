@@ -24,9 +24,9 @@ int detection_cell_size(const MotionOptions& options, cv::Size size);
 std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
                                                 const MotionOptions& options);
 
-// The same, remembering cells that had no corner at all (flat ground, sky, a blank frame) and
-// searching them again only every `empty_cell_retry_frames` calls, so texture-less areas do not
-// cost a corner search every frame. With `continuous` false (first frame, after an invalid one)
+// The same, remembering cells that gave no new corner (flat ground, sky, a blank frame, or every
+// corner too close to a live feature) and searching them again only after `empty_cell_retry_frames`
+// calls (staggered by cell), so such areas do not cost a corner search every frame. With `continuous` false (first frame, after an invalid one)
 // every cell is searched and the back-off starts afresh: after a blank frame, the next frame
 // must be searched everywhere.
 class GridCornerDetector {

@@ -66,6 +66,8 @@ Homography refine_homography(const Homography& initial, const std::vector<cv::Po
   int n = 0;
   for (auto flag : use) n += flag ? 1 : 0;
   if (n < 4) return initial;
+  // Every k-th usable point: keeps the spatial spread of the inliers, deterministic.
+  const int stride = (n + o.refine_max_points - 1) / o.refine_max_points;
   const cv::Matx33d tp = normalising_transform(src, use);
   const cv::Matx33d tq = normalising_transform(dst, use);
   Homography hn = tq * initial * tp.inv();
@@ -77,8 +79,9 @@ Homography refine_homography(const Homography& initial, const std::vector<cv::Po
   problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
   ceres::Problem problem(problem_options);
   const auto loss = make_loss(o);
+  int seen = 0;
   for (size_t i = 0; i < src.size(); ++i) {
-    if (!use[i]) continue;
+    if (!use[i] || seen++ % stride != 0) continue;
     const cv::Point3d p = tp * cv::Point3d(src[i].x, src[i].y, 1.0);
     const cv::Point3d q = tq * cv::Point3d(dst[i].x, dst[i].y, 1.0);
     auto* cost = new ceres::AutoDiffCostFunction<SymmetricTransferError, 4, 8>(

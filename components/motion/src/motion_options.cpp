@@ -12,7 +12,7 @@ MotionOptions load_motion_options(const ConfigNode& node) {
                     "predict_with_previous_homography", "recover_large_motion", "robust_method", "ransac_threshold_px",
                     "ransac_max_iterations", "ransac_confidence", "min_inliers", "min_inlier_ratio",
                     "min_tracked_ratio", "max_motion_fraction", "max_scale_change", "refine", "refine_loss",
-                    "refine_loss_scale_px", "refine_max_iterations", "refine_exclude_moving", "background_flow_degree", "history_frames",
+                    "refine_loss_scale_px", "refine_max_iterations", "refine_max_points", "refine_exclude_moving", "background_flow_degree", "history_frames",
                     "min_track_frames", "position_sigma_px", "prior_weight", "moving_sigma_factor",
                     "min_moving_speed_px", "min_moving_speed_mps", "confirm_frames", "release_ratio"});
   node.read("max_features", o.max_features, 10, 100000);
@@ -44,6 +44,7 @@ MotionOptions load_motion_options(const ConfigNode& node) {
   node.read_choice("refine_loss", o.refine_loss, {"cauchy", "huber", "none"});
   node.read("refine_loss_scale_px", o.refine_loss_scale_px, 1e-3, 100.0);
   node.read("refine_max_iterations", o.refine_max_iterations, 1, 1000);
+  node.read("refine_max_points", o.refine_max_points, 8, 1000000);
   node.read("refine_exclude_moving", o.refine_exclude_moving);
   node.read("background_flow_degree", o.background_flow_degree, 0, 4);
   node.read("history_frames", o.history_frames, 2, 200);
@@ -102,6 +103,7 @@ void validate(const MotionOptions& o) {
           "refine_loss must be cauchy, huber or none");
   require(o.refine_loss_scale_px > 0.0, "refine_loss_scale_px must be > 0");
   require(o.refine_max_iterations >= 1, "refine_max_iterations must be >= 1");
+  require(o.refine_max_points >= 8, "refine_max_points must be >= 8 (4 points fix a homography; more average the noise)");
   require(o.background_flow_degree >= 0 && o.background_flow_degree <= 4, "background_flow_degree must be in [0, 4]");
   require(o.history_frames >= 2, "history_frames must be >= 2");
   require(o.min_track_frames >= 2 && o.min_track_frames <= o.history_frames,

@@ -10,14 +10,14 @@ namespace uavmot::motion {
 
 struct MotionOptions {
   // --- Shi-Tomasi detection, only where coverage is missing -------------------------------
-  int max_features = 1000;          // cap on live features per frame
-  int cell_size_px = 48;            // detection grid cell side; 0 = sized so the cells hold max_features
+  int max_features = 3000;          // cap on live features per frame
+  int cell_size_px = 0;             // detection grid cell side; 0 = sized so the cells hold max_features
   int features_per_cell = 1;        // target features per grid cell
-  double min_distance_px = 10.0;    // no new corner closer than this to any live feature
+  double min_distance_px = 5.0;     // no new corner closer than this to any live feature
   int corner_block_size = 5;        // Shi-Tomasi neighbourhood (px)
   double min_corner_response = 6e-4;  // absolute minimum eigenvalue (cv::cornerMinEigenVal units)
   int border_px = 8;                // features this close to the image border are not used
-  int empty_cell_retry_frames = 4;  // a cell without any corner is searched again after this many frames
+  int empty_cell_retry_frames = 4;  // a cell that gave no new corner waits this many frames (staggered)
 
   // --- Pyramidal Lucas-Kanade with forward-backward check ----------------------------------
   int lk_window_px = 11;            // odd window side
@@ -43,6 +43,7 @@ struct MotionOptions {
   std::string refine_loss = "cauchy";  // "cauchy", "huber" or "none" (plain least squares)
   double refine_loss_scale_px = 0.3;   // residual where the robust loss starts to bend
   int refine_max_iterations = 15;
+  int refine_max_points = 2000;     // inliers thinned evenly to this many: beyond it time grows, accuracy hardly
   bool refine_exclude_moving = true;   // features classified moving do not enter the refinement
 
   // --- Independent motion ----------------------------------------------------------------
