@@ -15,7 +15,7 @@ struct MotionOptions {
   int features_per_cell = 1;        // target features per grid cell
   double min_distance_px = 5.0;     // no new corner closer than this to any live feature
   int corner_block_size = 5;        // Shi-Tomasi neighbourhood (px)
-  double min_corner_response = 6e-4;  // absolute minimum eigenvalue (cv::cornerMinEigenVal units)
+  double min_corner_response = 2e-3;  // absolute minimum eigenvalue (cv::cornerMinEigenVal units)
   int border_px = 8;                // features this close to the image border are not used
   int empty_cell_retry_frames = 4;  // a cell that gave no new corner waits this many frames (staggered)
 
