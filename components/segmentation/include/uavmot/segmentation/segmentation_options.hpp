@@ -66,7 +66,7 @@ struct RegionOptions {
   FusionRule fusion_rule = FusionRule::Sum;
   // Adaptive threshold: the `threshold_quantile` quantile of the window's accumulator values,
   // but at least `threshold_min_fraction` of the accumulator's full scale.
-  double threshold_quantile = 0.7;
+  double threshold_quantile = 0.75;
   double threshold_min_fraction = 0.2;
   // Pixel connectivity of the connected components: 4, 8, or 0 = by method: 8 for lbp (its
   // accumulator is sparse, accepted pixels often touch only diagonally) and 4 for the dense
