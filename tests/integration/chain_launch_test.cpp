@@ -4,12 +4,15 @@
 
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <regex>
 #include <thread>
 
 #include <gtest/gtest.h>
+#include <opencv2/videoio.hpp>
 
 #include "child_process.hpp"
+#include "uavmot/mcap/reader.hpp"
 
 namespace uavmot {
 namespace {
@@ -58,6 +61,45 @@ TEST_F(ChainLaunch, LosslessTracksAreByteIdenticalToInProcess) {
   // Every line a process printed carries its name.
   EXPECT_NE(launch.log().find("[motion"), std::string::npos);
   EXPECT_NE(launch.log().find("[sink"), std::string::npos);
+}
+
+// `--set view=true --set record=true` adds the viewer and the recorder, and every writer of a
+// lossless chain counts them (${readers:TOPIC}): the video has every frame, the recording every
+// sample, and the chain's results stay identical to the in-process run.
+TEST_F(ChainLaunch, ViewerAndRecorderInTheProfileAreWaitedForAndGetEverything) {
+  const std::string out = root_ + "/launch_observed";
+  ChildProcess launch({binary("uavmot"), "launch", kProfile, "--input", sequence_, "--out", out, "--set", "domain=143",
+                       "--set", "view=true", "--set", "record=true"},
+                      root_ + "/launch_observed.log");
+  ASSERT_EQ(launch.wait(std::chrono::seconds(400)), 0) << launch.log();
+  const std::string log = launch.log();
+  // Two more readers of frames, motion, segmentation and tracks than the plain chain has.
+  for (const auto& [name, readers] : std::map<std::string, int>{{"source", 4}, {"motion", 5}, {"segmentation", 4}, {"tracking", 3}}) {
+    const std::regex started("started " + name + R"( \(pid \d+\): uavmot-)" + name + "[^\n]* --wait-subscribers " +
+                             std::to_string(readers) + " ");
+    EXPECT_TRUE(std::regex_search(log, started)) << name << " should wait for " << readers << " readers:\n" << log;
+  }
+  EXPECT_EQ(read_file(out + "/tracks.txt"), read_file(root_ + "/process/tracks.txt"));
+
+  mcap::Reader recording;
+  recording.open(out + "/chain.mcap");
+  EXPECT_FALSE(recording.damage().has_value());
+  std::map<std::string, uint64_t> count;
+  for (const auto& [id, channel] : recording.channels()) {
+    const auto n = recording.statistics().channel_message_counts.find(id);
+    count[channel.topic] = n == recording.statistics().channel_message_counts.end() ? 0 : n->second;
+  }
+  // 120 frames and results plus each topic's end-of-stream sample.
+  for (const char* topic : {"uavmot/frames", "uavmot/motion", "uavmot/segmentation", "uavmot/tracks"}) {
+    EXPECT_EQ(count[topic], 121u) << topic;
+  }
+
+  cv::VideoCapture video(out + "/annotated.mp4");
+  ASSERT_TRUE(video.isOpened());
+  int frames = 0;
+  for (cv::Mat image; video.read(image);) ++frames;
+  EXPECT_EQ(frames, 120);
+  EXPECT_EQ(log.find("drawn before their tracks arrived"), std::string::npos) << "every frame drawn with its tracks:\n" << log;
 }
 
 TEST_F(ChainLaunch, KilledComponentIsRespawnedAndTheChainGoesOn) {

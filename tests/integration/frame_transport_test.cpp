@@ -1,9 +1,11 @@
 // Video source and frame sink as two separate processes over real Fast DDS.
 
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "child_process.hpp"
 #include "uavmot/core/checksum.hpp"
@@ -81,6 +83,67 @@ TEST(FrameTransport, RateModeTimestampsAndPacesAtTheRequestedRate) {
   const double span_s = (received.back().source_time_ns - received.front().source_time_ns) * 1e-9;
   const double expected_s = (received.back().index - received.front().index) / kRate;
   EXPECT_NEAR(span_s, expected_s, 0.25 * expected_s);
+}
+
+// A camera does not wait: a live source that cannot decode at the requested rate (1 kHz here)
+// publishes on schedule and passes over the frames it is late for, counting them on uavmot/health,
+// instead of falling further and further behind.
+TEST(FrameTransport, LiveSourceSkipsFramesItIsLateForAndCountsThem) {
+  const std::string out = testing::fresh_dir("frame_transport_live_skip");
+  constexpr double kRate = 1000.0;
+  constexpr int kFrames = 8000;  // 8 s of stream at 1 kHz, from the 250 CLIF images looped
+  ChildProcess sink({binary("uavmot-framesink"), "--out", out, "--domain", "140", "--mode", "live"}, out + "/sink.log");
+  ChildProcess source({binary("uavmot-source"), kClif, "--domain", "140", "--mode", "live", "--rate", "1000", "--loop",
+                       "--count", std::to_string(kFrames)},
+                      out + "/source.log");
+  // While it runs, the health topic shows the skipped frames as drops.
+  nlohmann::json source_row;
+  for (int poll = 0; poll < 5 && source_row.is_null(); ++poll) {
+    ChildProcess status({binary("uavmot"), "status", "--once", "--json", "--wait", "2", "--domain", "140"},
+                        out + "/status_" + std::to_string(poll) + ".log");
+    ASSERT_TRUE(status.wait(std::chrono::seconds(30)).has_value());
+    std::istringstream lines(status.log());
+    for (std::string line; std::getline(lines, line);) {
+      if (!nlohmann::json::accept(line)) continue;
+      for (const auto& row : nlohmann::json::parse(line)) {
+        if (row["component"] == "source" && row["state"] == "running" && row["dropped"].get<uint64_t>() > 0) source_row = row;
+      }
+    }
+  }
+  ASSERT_FALSE(source_row.is_null()) << "no running source reporting drops; source log:\n" << source.log();
+  EXPECT_EQ(source_row["frames_in"].get<uint64_t>(), source_row["frames_out"].get<uint64_t>() + source_row["dropped"].get<uint64_t>());
+
+  ASSERT_EQ(source.wait(std::chrono::seconds(120)), 0) << source.log();
+  ASSERT_EQ(sink.wait(std::chrono::seconds(30)), 0) << sink.log();
+  // "published P frames in ... , skipped S it was late for": every input frame is one or the other.
+  const std::string log = source.log();
+  const auto published_at = log.rfind("published ");
+  const auto skipped_at = log.find("skipped ", published_at);
+  ASSERT_NE(skipped_at, std::string::npos) << log;
+  const long published = std::stol(log.substr(published_at + 10));
+  const long skipped = std::stol(log.substr(skipped_at + 8));
+  EXPECT_EQ(published + skipped, kFrames) << log;
+  EXPECT_GT(skipped, kFrames / 2) << "decoding 668x1004 JPEGs at 1 kHz cannot keep up";
+
+  const auto received = read_frames_csv(out + "/frames.csv");
+  ASSERT_GT(received.size(), 10u);
+  EXPECT_LE(static_cast<long>(received.size()), published);
+  const int64_t start_ns = received.front().capture_time_ns - static_cast<int64_t>((received.front().index - 1) * 1e9 / kRate + 0.5);
+  std::vector<double> late_ms;
+  for (size_t i = 0; i < received.size(); ++i) {
+    if (i > 0) {
+      EXPECT_GT(received[i].index, received[i - 1].index);
+    }
+    EXPECT_LE(received[i].index, kFrames);
+    // Indices keep the input numbering, so capture times stay on the camera's clock.
+    EXPECT_EQ(received[i].capture_time_ns - start_ns, static_cast<int64_t>((received[i].index - 1) * 1e9 / kRate + 0.5));
+    late_ms.push_back((received[i].source_time_ns - received[i].capture_time_ns) * 1e-6);
+  }
+  // On schedule: a frame goes out within a few decode times of when it was due. A source that did
+  // not skip would publish about one frame in five on time here and end seconds behind.
+  std::sort(late_ms.begin(), late_ms.end());
+  EXPECT_LT(late_ms[late_ms.size() / 2], 50.0);
+  EXPECT_LT(late_ms.back(), 1000.0);
 }
 
 TEST(FrameTransport, SourceFailsClearlyOnBadInput) {

@@ -13,7 +13,7 @@ for preset in paper hd; do
   [ -f "$out/$preset/seqinfo.ini" ] || "$bin/uavmot" sim --preset "$preset" --seed 1 --frames 250 --out "$out/$preset" --quiet
   echo
   echo "== $preset"
-  "$bin/uavmot-bench-live" --input "$out/$preset" --out "$out/$preset-tracks" --json "$out/live-$preset.json" --domain 48 \
+  "$bin/uavmot-bench-live" --input "$out/$preset" --out "$out/$preset-tracks" --json "$out/live-$preset.json" --domain "${UAVMOT_BENCH_DOMAIN:-48}" \
     2>"$out/live-$preset.log"
   echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
 done

@@ -39,7 +39,9 @@ msg::Frame end_of_stream_frame(const std::string& stream_id, int64_t last_index)
   return sample;
 }
 
-std::optional<Frame> from_msg(const msg::Frame& sample, std::string& why) {
+namespace {
+
+std::optional<Frame> convert(const msg::Frame& sample, std::string& why, uint8_t* view_of) {
   Frame frame;
   frame.stream_id = sample.stream_id().to_string();
   frame.index = sample.frame_index();
@@ -73,9 +75,20 @@ std::optional<Frame> from_msg(const msg::Frame& sample, std::string& why) {
           " for " + std::to_string(sample.width()) + "x" + std::to_string(sample.height()) + "x" + std::to_string(channels);
     return std::nullopt;
   }
-  frame.image.create(static_cast<int>(sample.height()), static_cast<int>(sample.width()), channels == 3 ? CV_8UC3 : CV_8UC1);
+  const int type = channels == 3 ? CV_8UC3 : CV_8UC1;
+  if (view_of) {
+    frame.image = cv::Mat(static_cast<int>(sample.height()), static_cast<int>(sample.width()), type, view_of);
+    return frame;
+  }
+  frame.image.create(static_cast<int>(sample.height()), static_cast<int>(sample.width()), type);
   std::memcpy(frame.image.data, sample.data().data(), expected);
   return frame;
 }
+
+}  // namespace
+
+std::optional<Frame> from_msg(const msg::Frame& sample, std::string& why) { return convert(sample, why, nullptr); }
+
+std::optional<Frame> view_msg(msg::Frame& sample, std::string& why) { return convert(sample, why, sample.data().data()); }
 
 }  // namespace uavmot::dds

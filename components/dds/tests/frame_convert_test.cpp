@@ -33,6 +33,25 @@ TEST(FrameConvert, RoundTripIsBitExactForMonoAndColor) {
   }
 }
 
+TEST(FrameConvert, ViewSharesTheSamplesPixelsAndValidatesTheSame) {
+  for (int type : {CV_8UC1, CV_8UC3}) {
+    const Frame in = random_frame(type);
+    msg::Frame sample = to_msg(in);
+    std::string why;
+    const auto view = view_msg(sample, why);
+    ASSERT_TRUE(view) << why;
+    EXPECT_EQ(view->index, 42);
+    EXPECT_EQ(view->image.type(), type);
+    EXPECT_EQ(view->image.data, sample.data().data()) << "no copy";
+    EXPECT_EQ(cv::norm(view->image, in.image, cv::NORM_INF), 0.0);
+  }
+  msg::Frame short_sample = to_msg(random_frame(CV_8UC1));
+  short_sample.data().pop_back();
+  std::string why;
+  EXPECT_FALSE(view_msg(short_sample, why));
+  EXPECT_NE(why.find("expected 527"), std::string::npos) << why;
+}
+
 TEST(FrameConvert, RejectsMalformedSamplesWithAReason) {
   msg::Frame sample = to_msg(random_frame(CV_8UC1));
   std::string why;

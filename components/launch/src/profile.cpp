@@ -20,12 +20,22 @@ std::string substitute(const std::string& text, const std::map<std::string, std:
     if (end == std::string::npos) throw InputError(where + ": unterminated '${' in '" + text + "'");
     const std::string name = text.substr(start + 2, end - start - 2);
     const auto it = variables.find(name);
+    if (it == variables.end() && name.rfind("readers:", 0) == 0) {
+      throw InputError(where + ": '${" + name + "}': no process of the profile reads '" + name.substr(8) +
+                       "' (list it under that process's reads)");
+    }
     if (it == variables.end()) {
       throw InputError(where + ": variable '${" + name + "}' is not defined (set it with --set " + name + "=VALUE)");
     }
     out += text.substr(pos, start - pos) + it->second;
     pos = end + 1;
   }
+}
+
+bool parse_enabled(const std::string& value, const std::string& where) {
+  if (value == "true" || value == "yes" || value == "on" || value == "1") return true;
+  if (value == "false" || value == "no" || value == "off" || value == "0" || value.empty()) return false;
+  throw InputError(where + ": enabled is '" + value + "' (expected true or false)");
 }
 
 }  // namespace
@@ -49,7 +59,7 @@ Profile load_profile(const std::string& file) {
   if (processes.empty()) root.fail("processes", "a profile needs a list of processes");
   for (const auto& node : processes) {
     node.expect_only({"name", "command", "args", "env", "common_args", "required", "stop_on_failure", "respawn", "respawn_delay",
-                      "max_respawns", "start_delay"});
+                      "max_respawns", "start_delay", "enabled", "reads"});
     ProcessSpec spec;
     node.read("name", spec.name);
     node.read("command", spec.command);
@@ -59,6 +69,8 @@ Profile load_profile(const std::string& file) {
       if (other.name == spec.name) node.fail("name", "duplicate process name '" + spec.name + "'");
     }
     node.read("args", spec.args);
+    node.read("enabled", spec.enabled);
+    node.read("reads", spec.reads);
     node.read("common_args", spec.common_args);
     node.read("required", spec.required);
     node.read("stop_on_failure", spec.stop_on_failure);
@@ -84,12 +96,30 @@ Profile resolve(const Profile& profile, const std::map<std::string, std::string>
     if (profile.variables.count(k) && !variables.count(k)) v = substitute(v, given, profile.file + ": variable '" + k + "'");
   }
   Profile out = profile;
+  out.processes.clear();
+  for (const auto& p : profile.processes) {
+    const std::string where = profile.file + ": process '" + p.name + "'";
+    if (parse_enabled(substitute(p.enabled, all, where), where)) out.processes.push_back(p);
+  }
+  // Readers per topic among the processes that run; every topic some process names has a count.
+  std::map<std::string, int> readers;
+  for (const auto& p : profile.processes) {
+    for (const auto& topic : p.reads) readers[substitute(topic, all, profile.file + ": process '" + p.name + "'")] += 0;
+  }
+  for (auto& p : out.processes) {
+    for (auto& topic : p.reads) {
+      topic = substitute(topic, all, profile.file + ": process '" + p.name + "'");
+      ++readers[topic];
+    }
+  }
+  for (const auto& [topic, count] : readers) all["readers:" + topic] = std::to_string(count);
   for (auto& arg : out.common_args) arg = substitute(arg, all, profile.file + ": common_args");
   for (auto& p : out.processes) {
     const std::string where = profile.file + ": process '" + p.name + "'";
     p.command = substitute(p.command, all, where);
     for (auto& arg : p.args) arg = substitute(arg, all, where);
     for (auto& [k, v] : p.env) v = substitute(v, all, where);
+    p.enabled = "true";
   }
   return out;
 }

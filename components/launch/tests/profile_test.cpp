@@ -68,6 +68,38 @@ processes:
   EXPECT_FALSE(profile.processes[1].common_args);
 }
 
+// Processes switched on by a variable, and writers that wait for exactly the readers that run.
+TEST(LaunchProfile, EnabledProcessesAndReaderCounts) {
+  const auto file = write_profile("launch_readers.yaml", R"(
+variables: {view: "false"}
+processes:
+  - name: view
+    command: view
+    enabled: "${view}"
+    reads: [t/frames, t/tracks]
+  - name: sink
+    command: sink
+    reads: [t/tracks]
+  - name: source
+    command: source
+    args: [--wait-subscribers, "${readers:t/frames}", --tracks-readers, "${readers:t/tracks}"]
+)");
+  const auto profile = load_profile(file);
+  const auto plain = resolve(profile, {});
+  ASSERT_EQ(plain.processes.size(), 2u);
+  EXPECT_EQ(plain.processes[0].name, "sink");
+  EXPECT_EQ(plain.processes[1].args, (std::vector<std::string>{"--wait-subscribers", "0", "--tracks-readers", "1"}));
+  const auto viewed = resolve(profile, {{"view", "true"}});
+  ASSERT_EQ(viewed.processes.size(), 3u);
+  EXPECT_EQ(viewed.processes[2].args, (std::vector<std::string>{"--wait-subscribers", "1", "--tracks-readers", "2"}));
+
+  EXPECT_NE(error_of([&] { resolve(profile, {{"view", "maybe"}}); }).find("process 'view': enabled is 'maybe'"), std::string::npos);
+  const auto typo = write_profile("launch_readers_typo.yaml",
+                                  "processes:\n  - name: a\n    command: a\n    args: [\"${readers:t/framez}\"]\n");
+  EXPECT_NE(error_of([&] { resolve(load_profile(typo), {}); }).find("no process of the profile reads 't/framez'"),
+            std::string::npos);
+}
+
 TEST(LaunchProfile, DefaultsMayNameOtherVariables) {
   const auto file = write_profile("launch_nested.yaml",
                                   "variables:\n  qos_dir: \"${profile_dir}/qos\"\nprocesses:\n"

@@ -75,7 +75,7 @@ int motion_main(int argc, char** argv) {
           }
           health.frame_in();
           std::string why;
-          auto frame = dds::from_msg(sample, why);
+          auto frame = dds::view_msg(sample, why);  // processed before the next take: no copy
           if (!frame) {
             health.invalid_sample();
             rejects.log(dds::kFramesTopic, why);

@@ -8,14 +8,14 @@
 
 namespace uavmot::motion {
 
-Pyramid build_pyramid(const cv::Mat& gray, const MotionOptions& o) {
-  Pyramid pyramid;
+void build_pyramid(const cv::Mat& gray, const MotionOptions& o, Pyramid& pyramid) {
   pyramid.size = gray.size();
   // Copies into a bordered buffer (tryReuseInputImage = false): the caller's frame buffer may be reused.
+  // OpenCV refills levels that already have the right size in place, so a reused pyramid costs no
+  // allocation (about 13 MB per 1080p frame, whose page faults were a visible share of the time).
   cv::buildOpticalFlowPyramid(gray, pyramid.levels, cv::Size(o.lk_window_px, o.lk_window_px), o.pyramid_levels,
                               /*withDerivatives=*/true, cv::BORDER_REFLECT_101, cv::BORDER_CONSTANT,
                               /*tryReuseInputImage=*/false);
-  return pyramid;
 }
 
 void track_features(const Pyramid& previous, const Pyramid& current, const std::vector<cv::Point2f>& from,

@@ -18,7 +18,8 @@ struct Pyramid {
   bool empty() const { return levels.empty(); }
 };
 
-Pyramid build_pyramid(const cv::Mat& gray, const MotionOptions& options);
+// Builds the pyramid of `gray` into `pyramid`, reusing its buffers when the size matches.
+void build_pyramid(const cv::Mat& gray, const MotionOptions& options, Pyramid& pyramid);
 
 // Tracks `from` (in `previous`) into `current`, starting at `guess`. `tracked[i]` is set where the
 // forward track converged, the backward track returns within max_forward_backward_px and the

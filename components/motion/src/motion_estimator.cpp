@@ -74,6 +74,7 @@ class MotionEstimator::Impl {
   SceneInfo scene_;
   GridCornerDetector detector_;
   Pyramid previous_;
+  Pyramid spare_;  // buffers for the next frame's pyramid
   std::vector<LiveFeature> features_;  // ordered by id
   uint64_t next_id_ = 1;
   Homography last_motion_ = Homography::eye();
@@ -105,7 +106,8 @@ MotionEstimate MotionEstimator::Impl::process(const Frame& frame) {
   out.capture_time_ns = frame.capture_time_ns;
   out.image_width = frame.image.cols;
   out.image_height = frame.image.rows;
-  Pyramid current = build_pyramid(gray_, options_);
+  Pyramid& current = spare_;  // the buffers of the frame before the previous one
+  build_pyramid(gray_, options_, current);
 
   const bool valid = track_and_estimate(current, out);
   if (!valid) features_.clear();  // nothing links this frame to the last: every feature restarts
@@ -113,7 +115,7 @@ MotionEstimate MotionEstimator::Impl::process(const Frame& frame) {
   last_motion_ = valid ? out.homography : Homography::eye();
 
   detect_new_features(gray_, valid);
-  previous_ = std::move(current);
+  std::swap(previous_, spare_);
   gray_.release();  // never keep a reference to the caller's buffer
 
   out.features.reserve(features_.size());

@@ -129,6 +129,11 @@ int record_main(int argc, char** argv) {
       writer_options.compression = mcap::parse_compression(compression);
       writer_options.chunk_size = chunk_kb * 1024;
       mcap::QueuedWriter writer(writer_options, {.max_queue_bytes = queue_mb << 20});
+      // A launch profile may point it into the run's output folder before anything else made it.
+      if (const auto parent = std::filesystem::path(out).parent_path(); !parent.empty()) {
+        std::error_code ec;
+        std::filesystem::create_directories(parent, ec);
+      }
       writer.open(out);
       // The recorder always subscribes with the lossless (KEEP_ALL) reader profiles: with a live
       // chain it then loses a sample only when it falls behind the writer's whole history, and

@@ -1,6 +1,7 @@
 // uavmot-source: publishes the frames of a video, image folder or MOTChallenge sequence on
 // uavmot/frames, paced at a rate or, in lossless mode, as fast as the slowest subscriber takes them.
 
+#include <algorithm>
 #include <chrono>
 #include <thread>
 
@@ -70,14 +71,28 @@ int source_main(int argc, char** argv) {
       }
 
       Frame frame;
-      int64_t published = 0;
+      int64_t published = 0, skipped_late = 0;
       // Capture times go on the wire on the wall clock (stream start + (index - 1) / rate), so every
       // component can tell its latency; the results never depend on them.
       const int64_t stream_start_ns = dds::wall_clock_ns();
       int exit_code = kExitOk;
       const auto start = std::chrono::steady_clock::now();
+      // Live: a camera does not wait. Frame k is due at start + (k - 1) period; when frame k + 1 is
+      // already due, frame k is passed over undecoded and counted as dropped on the health topic.
+      const bool skip_late = !lossless;
+      int64_t next_index = 1;
       try {
-        while (!shutdown_requested() && frames->next(frame)) {
+        while (!shutdown_requested()) {
+          bool more = true;
+          while (skip_late && std::chrono::steady_clock::now() >= start + period * next_index) {
+            if (!(more = frames->skip())) break;
+            ++next_index;
+            ++skipped_late;
+            health.frame_in();
+            health.dropped();
+          }
+          if (!more || !frames->next(frame)) break;
+          next_index = frame.index + 1;
           if (paced) std::this_thread::sleep_until(start + period * (frame.index - 1));
           const auto t0 = std::chrono::steady_clock::now();
           frame.capture_time_ns += stream_start_ns;
@@ -105,12 +120,13 @@ int source_main(int argc, char** argv) {
         spdlog::error("{}", e.what());
         exit_code = kExitBadInput;
       }
-      auto eos = dds::end_of_stream_frame(input.stream_id, frame.index);
+      auto eos = dds::end_of_stream_frame(input.stream_id, std::max(frame.index, next_index - 1));
       writer->write_reliably(eos, std::chrono::seconds(5));
       writer->flush(std::chrono::seconds(5));
       health.report(exit_code == kExitOk ? msg::ComponentState::FINISHED : msg::ComponentState::FAILED);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      spdlog::info("published {} frames in {:.2f} s ({:.1f} fps){}", published, seconds, published / std::max(seconds, 1e-9),
+      spdlog::info("published {} frames in {:.2f} s ({:.1f} fps){}{}", published, seconds, published / std::max(seconds, 1e-9),
+                   skipped_late ? fmt::format(", skipped {} it was late for", skipped_late) : "",
                    frames->skipped() ? fmt::format(", skipped {} corrupt", frames->skipped()) : "");
       return exit_code;
     };

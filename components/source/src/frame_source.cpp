@@ -62,9 +62,22 @@ class SourceBase : public FrameSource {
     return true;
   }
 
+  bool skip() override {
+    if (options_.max_frames > 0 && delivered_ >= options_.max_frames) return false;
+    if (!skip_next()) {
+      if (!options_.loop || delivered_ == 0) return false;
+      rewind();
+      if (!skip_next()) return false;
+    }
+    ++delivered_;
+    return true;
+  }
+
  protected:
   // Reads the next input image (after start_frame); false at the end.
   virtual bool read_next(cv::Mat& image) = 0;
+  // Moves past the next input image without decoding it; false at the end.
+  virtual bool skip_next() = 0;
   virtual void rewind() = 0;
 
   FrameSourceOptions options_;
@@ -116,6 +129,11 @@ class ImageListSource : public SourceBase {
     }
     return false;
   }
+  bool skip_next() override {
+    if (next_ >= files_.size()) return false;
+    ++next_;
+    return true;
+  }
   void rewind() override { next_ = static_cast<size_t>(options_.start_frame - 1); }
 
  private:
@@ -151,6 +169,12 @@ class VideoSource : public SourceBase {
       }
       return false;
     }
+    ++position_;
+    return true;
+  }
+  bool skip_next() override {
+    // grab() demuxes (and, for inter-coded streams, decodes) but skips the conversion to a Mat.
+    if (!capture_.grab()) return false;
     ++position_;
     return true;
   }

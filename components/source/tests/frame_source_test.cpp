@@ -100,6 +100,45 @@ TEST(FrameSource, ReadsMotChallengeSequenceAndItsGsd) {
   EXPECT_EQ(drain(*source), 3);
 }
 
+
+// Live mode passes over frames it is late for: their indices are used up, the frames after them
+// are the same images with the same indices and capture times as without skipping.
+TEST(FrameSource, SkipKeepsInputNumberingForImagesAndVideo) {
+  for (const fs::path& input : {kClif, kAphillMp4}) {
+    SCOPED_TRACE(input.string());
+    auto plain = open_frame_source({.path = input.string(), .max_frames = 8});
+    std::vector<Frame> all;
+    for (Frame f; plain->next(f);) all.push_back({f.stream_id, f.index, f.capture_time_ns, f.image.clone()});
+    ASSERT_EQ(all.size(), 8u);
+
+    auto skipping = open_frame_source({.path = input.string(), .max_frames = 8});
+    Frame frame;
+    ASSERT_TRUE(skipping->next(frame));  // 1
+    ASSERT_TRUE(skipping->skip());       // 2
+    ASSERT_TRUE(skipping->skip());       // 3
+    ASSERT_TRUE(skipping->next(frame));  // 4
+    EXPECT_EQ(frame.index, 4);
+    EXPECT_EQ(frame.capture_time_ns, all[3].capture_time_ns);
+    EXPECT_EQ(cv::norm(frame.image, all[3].image, cv::NORM_INF), 0.0);
+    for (int i = 5; i <= 7; ++i) ASSERT_TRUE(skipping->skip());
+    ASSERT_TRUE(skipping->next(frame));  // 8, the last one of max_frames
+    EXPECT_EQ(frame.index, 8);
+    EXPECT_EQ(cv::norm(frame.image, all[7].image, cv::NORM_INF), 0.0);
+    EXPECT_FALSE(skipping->skip()) << "skip stops at the frame limit like next()";
+    EXPECT_FALSE(skipping->next(frame));
+  }
+  // At the end of a looping input, skip starts again from the first frame like next().
+  auto looping = open_frame_source({.path = kClif.string(), .start_frame = 249, .max_frames = 4, .loop = true});
+  Frame frame;
+  ASSERT_TRUE(looping->skip());  // 249
+  ASSERT_TRUE(looping->skip());  // 250
+  ASSERT_TRUE(looping->skip());  // 249 again
+  ASSERT_TRUE(looping->next(frame));
+  EXPECT_EQ(frame.index, 4);
+  const cv::Mat f250 = cv::imread((kClif / "000000-100255.jpg").string(), cv::IMREAD_GRAYSCALE);  // the 250th file
+  ASSERT_FALSE(f250.empty());
+  EXPECT_EQ(cv::norm(frame.image, f250, cv::NORM_INF), 0.0);
+}
 TEST(FrameSourceBadInput, MissingPath) {
   EXPECT_NE(error_of([] { open_frame_source({.path = "/nonexistent/video.mp4"}); }).find("does not exist"),
             std::string::npos);

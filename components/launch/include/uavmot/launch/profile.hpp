@@ -13,6 +13,11 @@ struct ProcessSpec {
   std::string command;  // a uavmot subcommand (runs uavmot-<command>) or a path to a program
   std::vector<std::string> args;
   std::map<std::string, std::string> env;
+  // "${view}" and the like: resolve() drops the process unless this becomes true/yes/on/1.
+  std::string enabled = "true";
+  // Topics it subscribes to. ${readers:TOPIC} is the number of enabled processes that read TOPIC,
+  // so a writer's --wait-subscribers follows the processes that are switched on (viewer, recorder).
+  std::vector<std::string> reads;
   bool common_args = true;     // append the profile's common_args
   bool required = false;         // its exit ends the launch (non-zero exit of the launch if it failed)
   bool stop_on_failure = false;  // its failure (after respawns) ends the launch with a non-zero exit
@@ -33,8 +38,9 @@ struct Profile {
 // Throws InputError naming the file, line and key of anything invalid (unknown keys included).
 Profile load_profile(const std::string& file);
 
-// Replaces ${name} in every argument and environment value; throws InputError naming an
-// undefined variable and the process that uses it.
+// Replaces ${name} in every argument and environment value, drops processes whose `enabled`
+// resolves to false and provides ${readers:TOPIC} (see ProcessSpec::reads). Throws InputError
+// naming an undefined variable or a bad `enabled` value and the process that uses it.
 Profile resolve(const Profile& profile, const std::map<std::string, std::string>& variables);
 
 }  // namespace uavmot::launch

@@ -44,6 +44,10 @@ class FrameSource {
   // Fills `frame` and returns true, or returns false at the end of the input.
   // Throws InputError when the input is corrupt (the message names the file).
   virtual bool next(Frame& frame) = 0;
+  // Passes over the next frame without decoding it (live mode: a frame the source is too late
+  // for) and returns true, or returns false at the end of the input. Its index is used up, so the
+  // frames after it keep their input numbering (and their capture times).
+  virtual bool skip() = 0;
   virtual const SourceInfo& info() const = 0;
   // Frames skipped because they could not be decoded (skip_corrupt mode).
   virtual int64_t skipped() const = 0;
