@@ -4,6 +4,8 @@
 
 #include <signal.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -65,27 +67,6 @@ std::map<std::string, std::vector<int64_t>> frame_indices(const std::string& fil
   return out;
 }
 
-// bringup/local.yaml with the recorder counted as one more reader of every lossless writer:
-// lossless writers wait only for the readers they count, so an uncounted recorder that matches
-// late misses the first samples.
-std::string profile_counting_the_recorder(const std::string& out_file) {
-  const std::string text = read_file(std::string(UAVMOT_SOURCE_DIR) + "/bringup/local.yaml");
-  const std::regex count(R"re(--wait-subscribers, "(\d+)")re");
-  std::string result;
-  auto last = text.cbegin();
-  for (std::sregex_iterator it(text.begin(), text.end(), count), end; it != end; ++it) {
-    result.append(last, (*it)[0].first);
-    result += "--wait-subscribers, \"" + std::to_string(std::stoi((*it)[1]) + 1) + "\"";
-    last = (*it)[0].second;
-  }
-  result.append(last, text.cend());
-  std::ofstream(out_file) << result;
-  // ${profile_dir}/chain.yaml: the chain configuration beside the profile.
-  fs::copy_file(std::string(UAVMOT_SOURCE_DIR) + "/bringup/chain.yaml", fs::path(out_file).parent_path() / "chain.yaml",
-                fs::copy_options::overwrite_existing);
-  return out_file;
-}
-
 class RecordReplay : public ::testing::Test {
  protected:
   // One chain run on a short paper sequence, recorded; shared by the tests.
@@ -101,21 +82,15 @@ class RecordReplay : public ::testing::Test {
     gsd_ = number(info.gsd_m);
     fps_ = number(info.fps);
 
-    // The recorder first, so it is matched before the source publishes (lossless readers).
-    ChildProcess recorder({binary("uavmot-record"), "--out", recording_, "--domain", "51"}, root_ + "/record.log");
-    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(30);
-    while (recorder.log().find("recording uavmot/frames") == std::string::npos && std::chrono::steady_clock::now() < deadline) {
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    ASSERT_NE(recorder.log().find("recording uavmot/frames"), std::string::npos) << recorder.log();
-    const std::string profile = profile_counting_the_recorder(root_ + "/local_recorded.yaml");
-    ASSERT_NE(read_file(profile).find("--wait-subscribers, \"4\""), std::string::npos) << read_file(profile);
-    ChildProcess launch({binary("uavmot-launch"), profile, "--input",
-                         sequence_, "--out", root_ + "/chain", "--set", "domain=51"},
+    // The profile's own recorder: started first and counted by every lossless writer
+    // (${readers:TOPIC}), so it misses nothing; the launch stops it with SIGINT at the end.
+    ChildProcess launch({binary("uavmot-launch"), std::string(UAVMOT_SOURCE_DIR) + "/bringup/local.yaml", "--input",
+                         sequence_, "--out", root_ + "/chain", "--set", "domain=51", "--set", "record=true"},
                         root_ + "/launch.log");
     ASSERT_EQ(launch.wait(std::chrono::seconds(300)), 0) << launch.log();
-    recorder.signal(SIGINT);
-    ASSERT_EQ(recorder.wait(std::chrono::seconds(60)), 0) << recorder.log();
+    ASSERT_NE(launch.log().find("uavmot-source " + sequence_ + " --stream-id uav1 --wait-subscribers 3 "), std::string::npos)
+        << launch.log();
+    fs::copy_file(root_ + "/chain/chain.mcap", recording_, fs::copy_options::overwrite_existing);
   }
 
   static std::string root_, sequence_, recording_, gsd_, fps_;
@@ -244,6 +219,43 @@ TEST_F(RecordReplay, ProcessReRunsTrackingFromTheRecording) {
   ASSERT_FALSE(expected.empty());
   EXPECT_EQ(read_file(out + "/tracks.txt"), expected);
   EXPECT_EQ(read_file(out + "/tracks_obb.csv"), read_file(root_ + "/chain/tracks_obb.csv"));
+}
+
+// `uavmot eval --recording` scores the recorded tracks (and motion) against the sequence's ground
+// truth as the result files of the same run score: the same counts; positions differ only by the
+// files' rounding to 1/1000 px.
+void expect_same_scores(const nlohmann::json& recorded, const nlohmann::json& files, const std::string& path = "") {
+  ASSERT_EQ(recorded.type(), files.type()) << path;
+  if (recorded.is_object()) {
+    for (const auto& [key, value] : recorded.items()) {
+      ASSERT_TRUE(files.contains(key)) << path << "/" << key;
+      expect_same_scores(value, files[key], path + "/" + key);
+    }
+  } else if (recorded.is_array()) {
+    ASSERT_EQ(recorded.size(), files.size()) << path;
+    for (size_t i = 0; i < recorded.size(); ++i) expect_same_scores(recorded[i], files[i], path + "/" + std::to_string(i));
+  } else if (recorded.is_number_float()) {
+    EXPECT_NEAR(recorded.get<double>(), files.get<double>(), 1e-4 * std::max(1.0, std::abs(files.get<double>()))) << path;
+  } else {
+    EXPECT_EQ(recorded, files) << path;
+  }
+}
+
+TEST_F(RecordReplay, EvalScoresTheRecordingLikeTheResultFiles) {
+  const std::string chain = root_ + "/chain";
+  ChildProcess from_recording({binary("uavmot-eval"), "--seq", sequence_, "--recording", recording_, "--json",
+                               root_ + "/eval_recording.json"},
+                              root_ + "/eval_recording.log");
+  ASSERT_EQ(from_recording.wait(std::chrono::seconds(60)), 0) << from_recording.log();
+  ChildProcess from_files({binary("uavmot-eval"), "--seq", sequence_, "--pred", chain + "/tracks.txt", "--obb",
+                           chain + "/tracks_obb.csv", "--homographies", chain + "/homographies.txt", "--features",
+                           chain + "/features.csv", "--json", root_ + "/eval_files.json"},
+                          root_ + "/eval_files.log");
+  ASSERT_EQ(from_files.wait(std::chrono::seconds(60)), 0) << from_files.log();
+  const auto recorded = nlohmann::json::parse(read_file(root_ + "/eval_recording.json"));
+  const auto files = nlohmann::json::parse(read_file(root_ + "/eval_files.json"));
+  ASSERT_GT(files["tracking"][0]["TP"].get<int>(), 0) << "the run found nothing: the comparison would be empty";
+  expect_same_scores(recorded, files);
 }
 
 TEST_F(RecordReplay, TruncatedRecordingReplaysWhatPrecedesTheDamageAndRecovers) {

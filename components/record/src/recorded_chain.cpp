@@ -1,11 +1,13 @@
 #include "uavmot/record/recorded_chain.hpp"
 
 #include <map>
+#include <set>
 
 #include <spdlog/spdlog.h>
 
 #include "motionPubSubTypes.h"
 #include "segmentationPubSubTypes.h"
+#include "tracksPubSubTypes.h"
 #include "uavmot/core/error.hpp"
 #include "uavmot/core/frame_pairing.hpp"
 #include "uavmot/dds/chain_convert.hpp"
@@ -14,37 +16,54 @@
 #include "uavmot/record/cdr_payload.hpp"
 
 namespace uavmot::record {
+namespace {
 
-RecordedChainCounts read_recorded_chain(const std::string& path, const RecordedPairHandler& handle) {
+// One topic: decode the CDR payload, skip end-of-stream markers, validate, hand on.
+template <class PubSubType>
+class TopicDecoder {
+ public:
+  template <class Handler>
+  bool decode(const mcap::MessageView& m, const std::string& what, RecordedSampleCounts& counts, uint64_t& handed,
+              const Handler& handler) {
+    from_cdr(type_, m.data, m.size, sample_, what);
+    if (sample_.end_of_stream()) return false;  // carries no result
+    std::string why;
+    auto value = dds::from_msg(sample_, why);
+    if (!value) {
+      ++counts.invalid;
+      spdlog::warn("{}: {}", what, why);
+      return false;
+    }
+    handler(*value);
+    ++handed;
+    return true;
+  }
+
+ private:
+  PubSubType type_;
+  typename PubSubType::type sample_;
+};
+
+}  // namespace
+
+RecordedSampleCounts read_recorded_samples(const std::string& path, const RecordedSampleHandlers& handlers) {
   mcap::Reader reader;
   reader.open(path);
-  bool has_motion = false, has_segmentation = false;
-  for (const auto& [id, channel] : reader.channels()) {
-    has_motion = has_motion || channel.topic == dds::kMotionTopic;
-    has_segmentation = has_segmentation || channel.topic == dds::kSegmentationTopic;
-  }
-  if (!has_motion || !has_segmentation) {
-    throw InputError(path + ": the recording has no " + (has_motion ? dds::kSegmentationTopic : dds::kMotionTopic) +
-                     " topic; re-running tracking needs both uavmot/motion and uavmot/segmentation");
+  std::set<std::string> wanted;
+  if (handlers.motion) wanted.insert(dds::kMotionTopic);
+  if (handlers.segmentation) wanted.insert(dds::kSegmentationTopic);
+  if (handlers.tracks) wanted.insert(dds::kTracksTopic);
+  std::set<std::string> present;
+  for (const auto& [id, channel] : reader.channels()) present.insert(channel.topic);
+  for (const auto& topic : wanted) {
+    if (!present.count(topic)) throw InputError(path + ": the recording has no " + topic + " topic");
   }
 
-  struct Stream {
-    FramePairing<MotionEstimate, SegmentationResult> pairing;
-  };
-  std::map<std::string, Stream> streams;
-  RecordedChainCounts counts;
-  auto drain = [&](const std::string& id, Stream& s) {
-    while (auto pair = s.pairing.pop()) {
-      handle(id, pair->first, pair->second);
-      ++counts.pairs;
-    }
-  };
-
-  msg::MotionEstimatePubSubType motion_type;
-  msg::SegmentationPubSubType segmentation_type;
-  msg::MotionEstimate motion;
-  msg::Segmentation segmentation;
-  auto cursor = reader.messages({.topics = {dds::kMotionTopic, dds::kSegmentationTopic}});
+  RecordedSampleCounts counts;
+  TopicDecoder<msg::MotionEstimatePubSubType> motion;
+  TopicDecoder<msg::SegmentationPubSubType> segmentation;
+  TopicDecoder<msg::TrackListPubSubType> tracks;
+  auto cursor = reader.messages({.topics = wanted});
   mcap::MessageView m;
   while (true) {
     try {
@@ -54,34 +73,45 @@ RecordedChainCounts read_recorded_chain(const std::string& path, const RecordedP
       break;
     }
     const std::string what = path + ": " + m.channel->topic + " message " + std::to_string(m.sequence);
-    std::string why;
     if (m.channel->topic == dds::kMotionTopic) {
-      from_cdr(motion_type, m.data, m.size, motion, what);
-      Stream& s = streams[motion.stream_id().to_string()];
-      if (motion.end_of_stream()) {
-        // End of stream carries no result; pairs already complete were handed on.
-      } else if (auto value = dds::from_msg(motion, why)) {
-        s.pairing.add_first(motion.frame_index(), std::move(*value));
-      } else {
-        ++counts.invalid;
-        spdlog::warn("{}: {}", what, why);
-      }
-      drain(motion.stream_id().to_string(), s);
+      motion.decode(m, what, counts, counts.motion, handlers.motion);
+    } else if (m.channel->topic == dds::kSegmentationTopic) {
+      segmentation.decode(m, what, counts, counts.segmentation, handlers.segmentation);
     } else {
-      from_cdr(segmentation_type, m.data, m.size, segmentation, what);
-      Stream& s = streams[segmentation.stream_id().to_string()];
-      if (segmentation.end_of_stream()) {
-        // End of stream carries no result; pairs already complete were handed on.
-      } else if (auto value = dds::from_msg(segmentation, why)) {
-        s.pairing.add_second(segmentation.frame_index(), std::move(*value));
-      } else {
-        ++counts.invalid;
-        spdlog::warn("{}: {}", what, why);
-      }
-      drain(segmentation.stream_id().to_string(), s);
+      tracks.decode(m, what, counts, counts.tracks, handlers.tracks);
     }
   }
-  for (auto& [id, s] : streams) counts.unpaired += s.pairing.dropped() + s.pairing.pending();
+  return counts;
+}
+
+RecordedChainCounts read_recorded_chain(const std::string& path, const RecordedPairHandler& handle) {
+  std::map<std::string, FramePairing<MotionEstimate, SegmentationResult>> streams;
+  RecordedChainCounts counts;
+  auto drain = [&](const std::string& id) {
+    while (auto pair = streams[id].pop()) {
+      handle(id, pair->first, pair->second);
+      ++counts.pairs;
+    }
+  };
+  RecordedSampleHandlers handlers;
+  handlers.motion = [&](const MotionEstimate& m) {
+    streams[m.stream_id].add_first(m.frame_index, m);
+    drain(m.stream_id);
+  };
+  handlers.segmentation = [&](const SegmentationResult& s) {
+    streams[s.stream_id].add_second(s.frame_index, s);
+    drain(s.stream_id);
+  };
+  try {
+    const auto samples = read_recorded_samples(path, handlers);
+    counts.invalid = samples.invalid;
+    counts.damage = samples.damage;
+  } catch (const InputError& e) {
+    const std::string message = e.what();
+    if (message.find(": the recording has no ") == std::string::npos) throw;
+    throw InputError(message + "; re-running tracking needs both uavmot/motion and uavmot/segmentation");
+  }
+  for (auto& [id, s] : streams) counts.unpaired += s.dropped() + s.pending();
   return counts;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
-// The chain's intermediate results read back from a recording: motion estimates and
-// segmentation results paired by frame index, per stream, in frame order. For re-running
-// tracking on the ground with new parameters (`uavmot process REC.mcap`).
+// The chain's results read back from a recording, as the chain's own types:
+// - read_recorded_samples: motion estimates, segmentation results and track lists as recorded
+//   (for scoring a recorded run: `uavmot eval --recording REC.mcap`);
+// - read_recorded_chain: motion estimates and segmentation results paired by frame index, per
+//   stream, in frame order (for re-running tracking on the ground: `uavmot process REC.mcap`).
 
 #include <cstdint>
 #include <functional>
@@ -10,6 +12,24 @@
 #include "uavmot/core/chain_types.hpp"
 
 namespace uavmot::record {
+
+// What to do with each recorded sample of a topic; a topic without a handler is not read.
+struct RecordedSampleHandlers {
+  std::function<void(const MotionEstimate&)> motion;              // uavmot/motion
+  std::function<void(const SegmentationResult&)> segmentation;    // uavmot/segmentation
+  std::function<void(const TrackList&)> tracks;                   // uavmot/tracks
+};
+
+struct RecordedSampleCounts {
+  uint64_t motion = 0, segmentation = 0, tracks = 0;  // samples handed on (end-of-stream markers not counted)
+  uint64_t invalid = 0;                               // samples the chain's validation rejects (logged, skipped)
+  std::string damage;                                 // the recording's damage (naming the offset), empty when intact
+};
+
+// Reads the topics that have a handler, in log-time order (per topic: the order they were
+// published). Stops at damage (everything before it is delivered) and reports it. Throws
+// InputError when the file is not MCAP or lacks a topic that has a handler.
+RecordedSampleCounts read_recorded_samples(const std::string& path, const RecordedSampleHandlers& handlers);
 
 struct RecordedChainCounts {
   uint64_t pairs = 0;             // frames with both a motion estimate and a segmentation result
