@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <thread>
 
@@ -43,9 +44,38 @@ class TopicRecorder {
   virtual bool wait_for_data(std::chrono::milliseconds timeout) = 0;
   virtual const std::string& topic() const = 0;
   uint64_t recorded() const { return sequence_; }
+  // Per stream of a chain topic: first and last frame index recorded and the indices missing in
+  // between (skipped upstream, or lost), so a log tells at once whether a recording is complete.
+  std::string coverage() const {
+    std::string out;
+    for (const auto& [stream, c] : coverage_) {
+      out += fmt::format("; stream {}: frames {}..{}, {} missing", stream, c.first, c.last, c.missing);
+    }
+    return out;
+  }
 
  protected:
+  template <class Sample>
+  void note_frame(const Sample& sample) {
+    if constexpr (requires { sample.frame_index(); sample.end_of_stream(); }) {
+      if (sample.end_of_stream()) return;
+      auto [it, fresh] = coverage_.try_emplace(sample.stream_id().to_string());
+      Coverage& c = it->second;
+      const int64_t index = sample.frame_index();
+      if (fresh) c.first = index;
+      else if (index > c.last + 1) c.missing += static_cast<uint64_t>(index - c.last - 1);
+      c.last = std::max(c.last, index);
+    }
+  }
+
   uint32_t sequence_ = 0;
+
+ private:
+  struct Coverage {
+    int64_t first = 0, last = 0;
+    uint64_t missing = 0;
+  };
+  std::map<std::string, Coverage> coverage_;
 };
 
 template <class PubSubType>
@@ -53,7 +83,12 @@ class TypedRecorder final : public TopicRecorder {
  public:
   TypedRecorder(dds::Participant& participant, const record::TopicSpec& spec, const std::string& schema,
                 dds::DeliveryMode chain_mode, mcap::QueuedWriter& out)
-      : reader_(participant.make_reader<PubSubType>(spec.topic, spec.topic_class)), out_(out) {
+      : reader_(spec.topic_class == dds::TopicClass::Frames
+                    // Room for many frames: a live writer keeps only its last 2, so a moment in
+                    // which this thread gets no CPU must not fill the reader's queue.
+                    ? participant.make_reader<PubSubType>(spec.topic, std::string("frames_record_reader"))
+                    : participant.make_reader<PubSubType>(spec.topic, spec.topic_class)),
+        out_(out) {
     const auto qos = record::describe_qos(reader_->native()->get_qos());
     channel_ = out_.add_channel(out_.add_schema(spec.type_name, "omgidl", schema), spec.topic, "cdr",
                                 record::channel_metadata(spec, chain_mode, qos));
@@ -65,6 +100,7 @@ class TypedRecorder final : public TopicRecorder {
     while (reader_->take(sample_, &info)) {
       const uint64_t received = wall_ns();
       out_.write(channel_, ++sequence_, received, to_ns(info.source_timestamp), record::to_cdr(type_, sample_));
+      note_frame(sample_);
       ++n;
     }
     return n;
@@ -168,7 +204,7 @@ int record_main(int argc, char** argv) {
       }
       for (auto& r : recorders) {
         r->drain();
-        spdlog::info("{}: {} samples", r->topic(), r->recorded());
+        spdlog::info("{}: {} samples{}", r->topic(), r->recorded(), r->coverage());
       }
       recorders.clear();  // no more samples: the readers go before the file closes
       writer.close();

@@ -49,8 +49,13 @@ class Participant {
 
   template <class PubSubType>
   std::unique_ptr<TopicReader<PubSubType>> make_reader(const std::string& topic_name, TopicClass topic_class) {
+    return make_reader<PubSubType>(topic_name, reader_profile(topic_class, options_.mode));
+  }
+  // With a named reader profile of the profiles file (e.g. the recorder's frames_record_reader).
+  template <class PubSubType>
+  std::unique_ptr<TopicReader<PubSubType>> make_reader(const std::string& topic_name, const std::string& profile) {
     auto* topic = topic_for(topic_name, eprosima::fastdds::dds::TypeSupport(new PubSubType()));
-    auto* reader = create_reader(topic, reader_profile(topic_class, options_.mode));
+    auto* reader = create_reader(topic, profile);
     return std::make_unique<TopicReader<PubSubType>>(reader, topic_name);
   }
 
