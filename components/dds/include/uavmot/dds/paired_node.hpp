@@ -51,7 +51,7 @@ class PairedNode {
     while (!shutdown_requested() && !ends_.all_ended()) {
       health_.set_queue_depth(static_cast<uint32_t>(reader_a_->unread() + reader_b_->unread()));
       health_.tick();
-      bool any = take_all(*reader_a_, true) | take_all(*reader_b_, false);
+      bool any = take_all(*reader_a_, true, sample_a_) | take_all(*reader_b_, false, sample_b_);
       if (!any) {
         // Wait on the side that is behind (either would do; this keeps the wakeups few).
         reader_b_->wait_for_data(std::chrono::milliseconds(50));
@@ -74,10 +74,10 @@ class PairedNode {
     return streams_[id];
   }
 
+  // `sample` is a member, reused: a frame sample keeps its pixel buffer between takes.
   template <class Reader>
-  bool take_all(Reader& reader, bool is_a) {
+  bool take_all(Reader& reader, bool is_a, typename Reader::Sample& sample) {
     bool any = false;
-    typename Reader::Sample sample;
     while (reader.take(sample)) {
       any = true;
       const std::string id = sample.stream_id().to_string();
@@ -140,6 +140,8 @@ class PairedNode {
   RejectLog rejects_;
   Process process_;
   std::map<std::string, StreamState> streams_;
+  typename PubA::type sample_a_;
+  typename PubB::type sample_b_;
 };
 
 }  // namespace uavmot::dds
