@@ -2,6 +2,7 @@
 // uavmot/frames, paced at a rate or, in lossless mode, as fast as the slowest subscriber takes them.
 
 #include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <thread>
 
@@ -15,6 +16,7 @@
 #include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/dds/node_support.hpp"
+#include "uavmot/source/frame_prefetcher.hpp"
 #include "uavmot/source/frame_source.hpp"
 
 namespace uavmot {
@@ -59,6 +61,20 @@ int source_main(int argc, char** argv) {
       const bool paced = rate_hz > 0.0 || native_rate || !lossless;
       const auto period = std::chrono::nanoseconds(static_cast<int64_t>(1e9 / info.fps));
 
+      // Live: a camera does not wait. Frame k is due at start + (k - 1) period; once frame k + 1 is
+      // due, frame k is too late: the reading thread passes over it undecoded, or, if it was
+      // decoded already and a newer frame is waiting, it is dropped below. Either way it counts as
+      // dropped on the health topic.
+      // The reading thread decodes the first frames while subscribers are awaited.
+      const bool skip_late = !lossless;
+      using Clock = std::chrono::steady_clock;
+      std::atomic<Clock::rep> start_ticks{0};  // when the stream started; 0 before
+      auto late_for = [&](int64_t index) {
+        const Clock::rep ticks = start_ticks.load();
+        return ticks != 0 && Clock::now() >= Clock::time_point(Clock::duration(ticks)) + period * index;
+      };
+      source::FramePrefetcher ahead(std::move(frames), 3, [&](int64_t index) { return skip_late && late_for(index); });
+
       const int wait_subscribers = node.wait_subscribers;
       if (lossless) writer->set_required_readers(wait_subscribers);
       if (wait_subscribers > 0) {
@@ -71,28 +87,29 @@ int source_main(int argc, char** argv) {
       }
 
       Frame frame;
-      int64_t published = 0, skipped_late = 0;
+      int64_t published = 0, dropped_late = 0, reported_undecoded = 0;
       // Capture times go on the wire on the wall clock (stream start + (index - 1) / rate), so every
       // component can tell its latency; the results never depend on them.
       const int64_t stream_start_ns = dds::wall_clock_ns();
       int exit_code = kExitOk;
-      const auto start = std::chrono::steady_clock::now();
-      // Live: a camera does not wait. Frame k is due at start + (k - 1) period; when frame k + 1 is
-      // already due, frame k is passed over undecoded and counted as dropped on the health topic.
-      const bool skip_late = !lossless;
-      int64_t next_index = 1;
+      const auto start = Clock::now();
+      start_ticks = start.time_since_epoch().count();
+      auto count_undecoded = [&] {
+        const int64_t undecoded = ahead.skipped_undecoded();
+        for (; reported_undecoded < undecoded; ++reported_undecoded) {
+          health.frame_in();
+          health.dropped();
+        }
+      };
       try {
-        while (!shutdown_requested()) {
-          bool more = true;
-          while (skip_late && std::chrono::steady_clock::now() >= start + period * next_index) {
-            if (!(more = frames->skip())) break;
-            ++next_index;
-            ++skipped_late;
+        while (!shutdown_requested() && ahead.next(frame)) {
+          count_undecoded();
+          if (skip_late && late_for(frame.index) && ahead.next_ready()) {  // a newer frame is there
+            ++dropped_late;
             health.frame_in();
             health.dropped();
+            continue;
           }
-          if (!more || !frames->next(frame)) break;
-          next_index = frame.index + 1;
           if (paced) std::this_thread::sleep_until(start + period * (frame.index - 1));
           const auto t0 = std::chrono::steady_clock::now();
           frame.capture_time_ns += stream_start_ns;
@@ -115,19 +132,21 @@ int source_main(int argc, char** argv) {
           health.tick();
           if (published % 100 == 0) spdlog::info("published {} frames", published);
         }
+        count_undecoded();
       } catch (const InputError& e) {
         // Frames already published stay published; the stream is closed properly below.
         spdlog::error("{}", e.what());
         exit_code = kExitBadInput;
       }
-      auto eos = dds::end_of_stream_frame(input.stream_id, std::max(frame.index, next_index - 1));
+      const int64_t skipped_late = dropped_late + ahead.skipped_undecoded();
+      auto eos = dds::end_of_stream_frame(input.stream_id, std::max(frame.index, ahead.last_index()));
       writer->write_reliably(eos, std::chrono::seconds(5));
       writer->flush(std::chrono::seconds(5));
       health.report(exit_code == kExitOk ? msg::ComponentState::FINISHED : msg::ComponentState::FAILED);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       spdlog::info("published {} frames in {:.2f} s ({:.1f} fps){}{}", published, seconds, published / std::max(seconds, 1e-9),
                    skipped_late ? fmt::format(", skipped {} it was late for", skipped_late) : "",
-                   frames->skipped() ? fmt::format(", skipped {} corrupt", frames->skipped()) : "");
+                   ahead.skipped_corrupt() ? fmt::format(", skipped {} corrupt", ahead.skipped_corrupt()) : "");
       return exit_code;
     };
   });

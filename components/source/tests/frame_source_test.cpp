@@ -8,6 +8,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "uavmot/core/error.hpp"
+#include "uavmot/source/frame_prefetcher.hpp"
 #include "uavmot/source/sequence_info.hpp"
 
 namespace uavmot::source {
@@ -191,6 +192,51 @@ TEST(FrameSourceBadInput, CorruptImageIsNamedOrSkipped) {
   auto lenient = open_frame_source({.path = dir.string(), .skip_corrupt = true});
   EXPECT_EQ(drain(*lenient), 3);
   EXPECT_EQ(lenient->skipped(), 1);
+}
+
+// Reading ahead changes nothing about the frames: same images, indices and capture times, in order.
+TEST(FramePrefetcher, DeliversTheSourcesFramesInOrderAndSkipsWhatItIsTold) {
+  auto plain = open_frame_source({.path = kClif.string(), .max_frames = 20});
+  FramePrefetcher ahead(open_frame_source({.path = kClif.string(), .max_frames = 20}), 3);
+  Frame a, b;
+  int64_t n = 0;
+  while (plain->next(a)) {
+    ASSERT_TRUE(ahead.next(b));
+    EXPECT_EQ(b.index, a.index);
+    EXPECT_EQ(b.capture_time_ns, a.capture_time_ns);
+    EXPECT_EQ(cv::norm(a.image, b.image, cv::NORM_INF), 0.0);
+    ++n;
+  }
+  EXPECT_FALSE(ahead.next(b));
+  EXPECT_EQ(n, 20);
+
+  // Asked before each read: odd frames are passed over undecoded and counted.
+  FramePrefetcher skipping(open_frame_source({.path = kClif.string(), .max_frames = 10}), 2,
+                           [](int64_t index) { return index % 2 == 1; });
+  std::vector<int64_t> indices;
+  while (skipping.next(b)) indices.push_back(b.index);
+  EXPECT_EQ(indices, (std::vector<int64_t>{2, 4, 6, 8, 10}));
+  EXPECT_EQ(skipping.skipped_undecoded(), 5);
+  EXPECT_EQ(skipping.last_index(), 10);
+}
+
+TEST(FramePrefetcher, ReportsABrokenInputAfterTheFramesBeforeIt) {
+  const fs::path dir = fresh_dir("prefetch_corrupt");
+  for (int i = 1; i <= 4; ++i) {
+    fs::copy_file(kClif / ("000000-10000" + std::to_string(5 + i) + ".jpg"), dir / ("f" + std::to_string(i) + ".jpg"));
+  }
+  std::ofstream(dir / "f3.jpg", std::ios::trunc) << "garbage, not a jpeg";
+  FramePrefetcher ahead(open_frame_source({.path = dir.string()}), 3);
+  Frame frame;
+  int64_t delivered = 0;
+  const std::string error = error_of([&] {
+    while (ahead.next(frame)) ++delivered;
+  });
+  EXPECT_EQ(delivered, 2);
+  EXPECT_NE(error.find("f3.jpg"), std::string::npos) << error;
+  // Stopping early (the destructor) must not hang on a reader that waits for room.
+  FramePrefetcher abandoned(open_frame_source({.path = kClif.string()}), 2);
+  ASSERT_TRUE(abandoned.next(frame));
 }
 
 TEST(FrameSourceBadInput, MalformedSeqinfo) {
