@@ -2,7 +2,8 @@
 # The live-mode figures of docs/benchmarks/live.md: simulate `paper` (1024x768) and `hd` (1920x1080),
 # both 25 fps, and run each through `uavmot launch bringup/local.yaml --set mode=live` under
 # uavmot-bench-live (end-to-end latency median/p99, CPU time and drops per component).
-#   bash tools/bench/live_bench.sh [OUT]   (OUT default out/bench; needs build/bin)
+#   bash tools/bench/live_bench.sh [OUT]   (OUT default out/bench; needs build/bin; DDS domain
+#   $UAVMOT_BENCH_DOMAIN, default 48)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 out=${1:-out/bench}
