@@ -1,17 +1,51 @@
 #!/bin/sh
 # Builds the uavmot base image without a registry: a minimal Debian bookworm root file system
-# (debootstrap) with the runtime libraries, imported into podman as `uavmot-base`.
-#   sudo docker/build_base.sh [IMAGE_NAME]
-# Then: podman build -t uavmot -f docker/Dockerfile .   (needs build/ with the binaries)
+# (debootstrap) with the runtime libraries the programs in BUILD_DIR/bin need
+# (docker/runtime_packages.sh), imported into podman as localhost/uavmot-base.
+#   docker/build_base.sh [BUILD_DIR]          (root; podman, debootstrap)
+# The image is labelled with a hash of its package list and of this script; when both are
+# unchanged the existing image is kept, so CI debootstraps only when the list changes.
+# Set UAVMOT_BASE_REBUILD=1 to rebuild anyway.
 set -eu
-name=${1:-uavmot-base}
+here=$(cd "$(dirname "$0")" && pwd)
+build_dir=${1:-$here/../build}
+name=${UAVMOT_BASE_IMAGE:-localhost/uavmot-base}
+mirror=${UAVMOT_DEBIAN_MIRROR:-http://deb.debian.org/debian}
+security_mirror=${UAVMOT_DEBIAN_SECURITY_MIRROR:-http://deb.debian.org/debian-security}
+
+packages=$(sh "$here/runtime_packages.sh" "$build_dir")
+key=$( { echo "$packages"; cat "$here/build_base.sh"; } | sha256sum | cut -c1-16)
+current=$(podman image inspect --format '{{index .Config.Labels "uavmot.base.key"}}' "$name" 2>/dev/null || true)
+if [ "$current" = "$key" ] && [ "${UAVMOT_BASE_REBUILD:-0}" != 1 ]; then
+  echo "build_base: $name is up to date (key $key)"
+  exit 0
+fi
+
+echo "build_base: building $name (key $key): $(echo $packages)"
 rootfs=$(mktemp -d /tmp/uavmot-rootfs.XXXXXX)
-trap 'rm -rf "$rootfs"' EXIT
-debootstrap --variant=minbase bookworm "$rootfs" http://deb.debian.org/debian
-chroot "$rootfs" apt-get install -y --no-install-recommends \
-  libfastrtps2.9 libfastcdr1 libopencv-core406 libopencv-imgproc406 libopencv-imgcodecs406 libopencv-videoio406 \
-  libopencv-video406 libopencv-calib3d406 libopencv-features2d406 libceres3 libyaml-cpp0.7 libspdlog1.10 libfmt9 \
-  libzstd1 liblz4-1 iproute2 fastdds-tools
-chroot "$rootfs" apt-get clean
-tar -C "$rootfs" -c . | podman import - "$name"
-echo "imported $name"
+log=$(mktemp /tmp/uavmot-base-log.XXXXXX)
+cleanup() {
+  umount "$rootfs/proc" 2>/dev/null || true
+  rm -rf "$rootfs" "$log"
+}
+trap cleanup EXIT INT TERM
+# Quiet unless a step fails: then its whole output.
+step() {
+  "$@" >"$log" 2>&1 || { cat "$log" >&2; echo "build_base: failed: $*" >&2; exit 1; }
+}
+step debootstrap --variant=minbase bookworm "$rootfs" "$mirror"
+# The same suites as the build host, so library versions (and sonames) match the binaries.
+cat > "$rootfs/etc/apt/sources.list" <<EOF
+deb $mirror bookworm main
+deb $mirror bookworm-updates main
+deb $security_mirror bookworm-security main
+EOF
+mount -t proc proc "$rootfs/proc"
+step chroot "$rootfs" /usr/bin/env DEBIAN_FRONTEND=noninteractive apt-get update
+# shellcheck disable=SC2086
+step chroot "$rootfs" /usr/bin/env DEBIAN_FRONTEND=noninteractive apt-get install -y --no-install-recommends $packages
+step chroot "$rootfs" apt-get clean
+umount "$rootfs/proc"
+rm -rf "$rootfs/var/lib/apt/lists/"* "$rootfs/var/cache/apt/"*.bin "$rootfs/usr/share/doc" "$rootfs/usr/share/man"
+tar -C "$rootfs" -c . | podman import -q --change "LABEL uavmot.base.key=$key" --change 'CMD ["/bin/bash"]' - "$name" >/dev/null
+echo "build_base: imported $name ($(podman image inspect --format '{{.Size}}' "$name") bytes)"

@@ -8,7 +8,8 @@
 #   uavmot launch bringup/air.yaml ...    --set qos_dir=OUT_DIR
 #
 # Access control: only air nodes (source, motion, segmentation) may publish frames and motion
-# estimates, only tracking may publish tracks and its state; every node may publish and read health.
+# estimates, only tracking may publish tracks and its state, only the air's downlink may publish
+# what crosses the link (uavmot/downlink/*); every node may publish and read health.
 # Fast DDS needs certificate paths as file:// + an absolute path.
 set -eu
 
@@ -21,7 +22,7 @@ qos_xml=${2:-$here/../bringup/qos/uavmot_qos.xml}
 [ -f "$qos_xml" ] || { echo "$0: QoS profiles file '$qos_xml' not found" >&2; exit 1; }
 mkdir -p "$1"
 out=$(cd "$1" && pwd)
-nodes="source motion segmentation tracking sink"
+nodes="source motion segmentation tracking downlink sink"
 days=3650
 
 cd "$out"
@@ -79,7 +80,10 @@ grant() {  # name "published topics" "subscribed topics"
   grant motion "uavmot/motion uavmot/health" "uavmot/frames uavmot/health"
   grant segmentation "uavmot/segmentation uavmot/health" "uavmot/frames uavmot/motion uavmot/health"
   grant tracking "uavmot/tracks uavmot/tracker_state uavmot/health" "uavmot/motion uavmot/segmentation uavmot/health"
-  grant sink "uavmot/health" "uavmot/motion uavmot/segmentation uavmot/tracks uavmot/health"
+  grant downlink "uavmot/downlink/motion uavmot/downlink/regions uavmot/downlink/tracks uavmot/health" \
+    "uavmot/motion uavmot/segmentation uavmot/tracks uavmot/health"
+  grant sink "uavmot/health" \
+    "uavmot/motion uavmot/segmentation uavmot/tracks uavmot/downlink/motion uavmot/downlink/regions uavmot/downlink/tracks uavmot/health"
   printf '  </permissions>\n</dds>\n'
 } > permissions.xml
 

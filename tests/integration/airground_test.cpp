@@ -1,6 +1,9 @@
-// Air and ground as two hosts: two network namespaces joined by a veth pair, the air half of the
-// chain (bringup/air.yaml) in one, the ground half (bringup/ground.yaml) in the other, real
-// processes over real UDP. Needs root and `ip netns`; skipped otherwise.
+// Air and ground as separate hosts: network namespaces joined by veth pairs, the air half of the
+// chain (bringup/air.yaml) in one or two "UAV" namespaces, the ground half (bringup/ground.yaml)
+// in another, real processes over real UDP. Needs root and `ip netns`; skipped otherwise.
+//
+// The downlink carries compact samples (float32 boxes, idl/downlink.idl), so the ground's files
+// equal `uavmot process`'s to within one unit of the last printed digit (homographies exactly).
 
 #include <arpa/inet.h>
 #include <fcntl.h>
@@ -12,7 +15,6 @@
 #include <unistd.h>
 
 #include <atomic>
-
 #include <cstdio>
 #include <cstdlib>
 #include <csignal>
@@ -26,6 +28,7 @@
 #include <gtest/gtest.h>
 
 #include "child_process.hpp"
+#include "result_compare.hpp"
 
 namespace uavmot {
 namespace {
@@ -37,7 +40,10 @@ namespace fs = std::filesystem;
 const std::string kAirProfile = std::string(UAVMOT_SOURCE_DIR) + "/bringup/air.yaml";
 const std::string kGroundProfile = std::string(UAVMOT_SOURCE_DIR) + "/bringup/ground.yaml";
 constexpr const char* kIp = "/usr/bin/ip";
-constexpr int kFrames = 80;
+constexpr int kFrames = 80;         // first UAV's sequence
+constexpr int kSecondFrames = 60;   // second UAV's sequence (another seed)
+// The downlink budget: 1 Mbit/s at 25 fps.
+constexpr double kBudgetBytesPerFrame = 1e6 / 8.0 / 25.0;
 
 // Runs a shell command; returns its exit code.
 int sh(const std::string& command) {
@@ -63,47 +69,68 @@ int last_frame_in(const std::string& mot_file) {
   return last;
 }
 
-// Two namespaces, air (10.200.0.1) and ground (10.200.0.2), joined by a veth pair. Names carry
-// the test's pid so parallel runs never collide; everything is removed in the destructor.
+// Payload bytes per downlink topic, from uavmot-downlink's last log lines ("TOPIC: N samples, B bytes").
+std::map<std::string, uint64_t> downlink_bytes(const std::string& air_log) {
+  std::map<std::string, uint64_t> out;
+  const std::regex line(R"((uavmot/downlink/\w+): (\d+) samples, (\d+) bytes)");
+  for (std::sregex_iterator it(air_log.begin(), air_log.end(), line), end; it != end; ++it) out[(*it)[1]] = std::stoull((*it)[3]);
+  return out;
+}
+
+// A ground namespace and one or two air namespaces. One air: a veth pair air (10.200.0.1) <->
+// ground (10.200.0.2). Two airs: each air's veth ends on a bridge in the ground namespace, the
+// second air is 10.200.0.3. Names carry the test's pid so parallel runs never collide;
+// everything is removed in the destructor.
 class Link {
  public:
-  Link()
-      : air_("uavmot-air-" + std::to_string(::getpid())),
-        ground_("uavmot-ground-" + std::to_string(::getpid())),
-        air_dev_("vair" + std::to_string(::getpid() % 1000000)),
-        ground_dev_("vgnd" + std::to_string(::getpid() % 1000000)) {
+  explicit Link(int airs = 1) : ground_("uavmot-ground-" + std::to_string(::getpid())) {
+    const std::string tag = std::to_string(::getpid() % 100000);
+    for (int i = 0; i < airs; ++i) {
+      air_.push_back("uavmot-air" + std::to_string(i) + "-" + std::to_string(::getpid()));
+      air_dev_.push_back("va" + std::to_string(i) + "x" + tag);
+      ground_dev_.push_back("vg" + std::to_string(i) + "x" + tag);
+    }
     remove();
     const std::string ip = kIp;
-    ok_ = sh(ip + " netns add " + air_) == 0 && sh(ip + " netns add " + ground_) == 0 &&
-          sh(ip + " link add " + air_dev_ + " type veth peer name " + ground_dev_) == 0 &&
-          sh(ip + " link set " + air_dev_ + " netns " + air_) == 0 &&
-          sh(ip + " link set " + ground_dev_ + " netns " + ground_) == 0 &&
-          sh(ip + " -n " + air_ + " addr add 10.200.0.1/24 dev " + air_dev_) == 0 &&
-          sh(ip + " -n " + ground_ + " addr add 10.200.0.2/24 dev " + ground_dev_) == 0 &&
-          sh(ip + " -n " + air_ + " link set " + air_dev_ + " up") == 0 &&
-          sh(ip + " -n " + ground_ + " link set " + ground_dev_ + " up") == 0 &&
-          sh(ip + " -n " + air_ + " link set lo up") == 0 && sh(ip + " -n " + ground_ + " link set lo up") == 0;
+    ok_ = sh(ip + " netns add " + ground_) == 0 && sh(ip + " -n " + ground_ + " link set lo up") == 0;
+    if (airs > 1) {
+      ok_ = ok_ && sh(ip + " -n " + ground_ + " link add br0 type bridge") == 0 &&
+            sh(ip + " -n " + ground_ + " addr add 10.200.0.2/24 dev br0") == 0 &&
+            sh(ip + " -n " + ground_ + " link set br0 up") == 0;
+    }
+    for (int i = 0; i < airs && ok_; ++i) {
+      const std::string air_ip = i == 0 ? "10.200.0.1/24" : "10.200.0." + std::to_string(2 + i) + "/24";
+      ok_ = sh(ip + " netns add " + air_[i]) == 0 &&
+            sh(ip + " link add " + air_dev_[i] + " type veth peer name " + ground_dev_[i]) == 0 &&
+            sh(ip + " link set " + air_dev_[i] + " netns " + air_[i]) == 0 &&
+            sh(ip + " link set " + ground_dev_[i] + " netns " + ground_) == 0 &&
+            sh(ip + " -n " + air_[i] + " addr add " + air_ip + " dev " + air_dev_[i]) == 0 &&
+            sh(ip + " -n " + air_[i] + " link set " + air_dev_[i] + " up") == 0 &&
+            sh(ip + " -n " + air_[i] + " link set lo up") == 0 &&
+            (airs == 1 ? sh(ip + " -n " + ground_ + " addr add 10.200.0.2/24 dev " + ground_dev_[i])
+                       : sh(ip + " -n " + ground_ + " link set " + ground_dev_[i] + " master br0")) == 0 &&
+            sh(ip + " -n " + ground_ + " link set " + ground_dev_[i] + " up") == 0;
+    }
   }
   ~Link() { remove(); }
   Link(const Link&) = delete;
   Link& operator=(const Link&) = delete;
 
   bool ok() const { return ok_; }
-  const std::string& air() const { return air_; }
+  const std::string& air(int i = 0) const { return air_[static_cast<size_t>(i)]; }
   const std::string& ground() const { return ground_; }
-  const std::string& air_dev() const { return air_dev_; }
-  const std::string& ground_dev() const { return ground_dev_; }
+  const std::string& air_dev(int i = 0) const { return air_dev_[static_cast<size_t>(i)]; }
+  const std::string& ground_dev(int i = 0) const { return ground_dev_[static_cast<size_t>(i)]; }
 
   // argv prefix that runs a command inside a namespace.
   std::vector<std::string> in(const std::string& ns) const { return {kIp, "netns", "exec", ns}; }
 
-  // Bytes the air side sent into the link (the downlink plus the ground's acknowledgements' share is on rx).
-  uint64_t air_tx_bytes() const { return counter(air_, air_dev_, "tx_bytes"); }
-  uint64_t air_rx_bytes() const { return counter(air_, air_dev_, "rx_bytes"); }
+  // Bytes an air host sent into the link (the downlink).
+  uint64_t air_tx_bytes(int i = 0) const { return counter(air(i), air_dev(i), "tx_bytes"); }
 
   // Drops `percent` % of the packets leaving each side into the link (both directions).
   bool add_random_loss(int percent) const {
-    for (const auto& [ns, dev] : {std::pair{air_, air_dev_}, std::pair{ground_, ground_dev_}}) {
+    for (const auto& [ns, dev] : {std::pair{air(), air_dev()}, std::pair{ground_, ground_dev()}}) {
       const std::string nft = std::string(kIp) + " netns exec " + ns + " nft ";
       if (sh(nft + "add table inet uavmot_loss") != 0 ||
           sh(nft + "'add chain inet uavmot_loss out { type filter hook output priority 0; }'") != 0 ||
@@ -118,7 +145,7 @@ class Link {
   uint64_t dropped_packets() const {
     uint64_t total = 0;
     const std::regex packets(R"(counter packets (\d+))");
-    for (const auto& ns : {air_, ground_}) {
+    for (const auto& ns : {air(), ground_}) {
       const std::string out = capture(std::string(kIp) + " netns exec " + ns + " nft list table inet uavmot_loss");
       std::smatch m;
       if (std::regex_search(out, m, packets)) total += std::stoull(m[1]);
@@ -128,7 +155,7 @@ class Link {
 
   // Drops every multicast packet in and out of both hosts: discovery must do without it.
   bool block_multicast() const {
-    for (const auto& ns : {air_, ground_}) {
+    for (const auto& ns : {air(), ground_}) {
       const std::string nft = std::string(kIp) + " netns exec " + ns + " nft ";
       if (sh(nft + "add table inet uavmot_mcast") != 0 ||
           sh(nft + "'add chain inet uavmot_mcast out { type filter hook output priority 0; }'") != 0 ||
@@ -143,8 +170,13 @@ class Link {
 
   // Token bucket on the air's side of the link: the downlink carries at most `rate`.
   bool limit_downlink(const std::string& rate) const {
-    return sh(std::string(kIp) + " netns exec " + air_ + " tc qdisc add dev " + air_dev_ + " root tbf rate " + rate +
+    return sh(std::string(kIp) + " netns exec " + air() + " tc qdisc add dev " + air_dev() + " root tbf rate " + rate +
               " burst 32kbit latency 400ms") == 0;
+  }
+
+  // The air's end of the link goes down (no carrier on either end) or comes back.
+  bool set_link(bool up) const {
+    return sh(std::string(kIp) + " -n " + air() + " link set " + air_dev() + (up ? " up" : " down")) == 0;
   }
 
  private:
@@ -153,16 +185,18 @@ class Link {
     return text.empty() ? 0 : std::stoull(text);
   }
   void remove() const {
+    std::vector<std::string> all = air_;
+    all.push_back(ground_);
     // Whatever still runs in our namespaces was started by this test: end it by pid first.
-    for (const auto& ns : {air_, ground_}) {
+    for (const auto& ns : all) {
       std::istringstream pids(capture(std::string(kIp) + " netns pids " + ns));
       for (pid_t pid; pids >> pid;) ::kill(pid, SIGKILL);
     }
-    sh(std::string(kIp) + " netns del " + air_);  // deleting a namespace deletes its veth end and the peer
-    sh(std::string(kIp) + " netns del " + ground_);
+    for (const auto& ns : all) sh(std::string(kIp) + " netns del " + ns);  // takes its veth ends (and peers) along
   }
 
-  std::string air_, ground_, air_dev_, ground_dev_;
+  std::string ground_;
+  std::vector<std::string> air_, air_dev_, ground_dev_;
   bool ok_ = false;
 };
 
@@ -214,18 +248,29 @@ class LinkCapture {
   std::string bytes_;
 };
 
+// One UAV of a run.
+struct Air {
+  std::string stream_id = "uav1";
+  std::string sequence;  // empty: the first sequence
+  int air_domain = 0;    // 0: link domain + 1
+};
+
 class AirGround : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
     if (::geteuid() != 0 || sh(std::string(kIp) + " netns list") != 0) return;
     root_ = testing::fresh_dir("airground");
+    for (const auto& [name, seed, frames] : {std::tuple{"paper", 11, kFrames}, std::tuple{"paper_b", 12, kSecondFrames}}) {
+      const std::string sequence = root_ + "/" + name;
+      ChildProcess sim({binary("uavmot-sim"), "--preset", "paper", "--seed", std::to_string(seed), "--frames",
+                        std::to_string(frames), "--out", sequence},
+                       root_ + "/sim_" + name + ".log");
+      ASSERT_EQ(sim.wait(std::chrono::seconds(120)), 0) << sim.log();
+      ChildProcess process({binary("uavmot-process"), sequence, "--out", root_ + "/process_" + name, "--quiet"},
+                           root_ + "/process_" + name + ".log");
+      ASSERT_EQ(process.wait(std::chrono::seconds(240)), 0) << process.log();
+    }
     sequence_ = root_ + "/paper";
-    ChildProcess sim({binary("uavmot-sim"), "--preset", "paper", "--seed", "11", "--frames", std::to_string(kFrames), "--out",
-                      sequence_},
-                     root_ + "/sim.log");
-    ASSERT_EQ(sim.wait(std::chrono::seconds(120)), 0) << sim.log();
-    ChildProcess process({binary("uavmot-process"), sequence_, "--out", root_ + "/process", "--quiet"}, root_ + "/process.log");
-    ASSERT_EQ(process.wait(std::chrono::seconds(240)), 0) << process.log();
   }
 
   void SetUp() override {
@@ -238,22 +283,26 @@ class AirGround : public ::testing::Test {
   void TearDown() override { link_.reset(); }
 
   struct Run {
-    std::optional<int> air_code, ground_code;
-    std::string air_log, ground_log, out;
-    uint64_t air_tx_bytes = 0;
-    std::string link_bytes;  // every packet the air sent over the link
+    std::optional<int> ground_code;
+    std::vector<std::optional<int>> air_codes;
+    std::string ground_log, out;
+    std::vector<std::string> air_logs;
+    uint64_t air_tx_bytes = 0;  // the first air
+    std::string link_bytes;     // every packet the first air sent over the link
     bool captured = false;
+    std::optional<int> air_code() const { return air_codes.at(0); }
+    const std::string& air_log() const { return air_logs.at(0); }
   };
 
-  // The ground half first (it waits for its inputs), then the air half; both must end by themselves.
+  // The ground half first (it waits for its inputs), then each air half; all must end by themselves.
   Run run_split(const std::string& name, int domain, const std::vector<std::string>& extra_sets = {},
                 std::chrono::seconds timeout = std::chrono::seconds(170),
-                const std::function<void(const ChildProcess& air)>& while_running = {}) {
+                const std::function<void(const ChildProcess& air)>& while_running = {}, std::vector<Air> airs = {Air{}}) {
     Run run;
     run.out = root_ + "/" + name;
     const uint64_t tx_before = link_->air_tx_bytes();
-    auto args = [&](const std::string& profile, const std::string& out) {
-      std::vector<std::string> a = {binary("uavmot"), "launch", profile, "--input", sequence_, "--out", out,
+    auto args = [&](const std::string& profile, const std::string& sequence, const std::string& out) {
+      std::vector<std::string> a = {binary("uavmot"), "launch", profile, "--input", sequence, "--out", out,
                                     "--set", "domain=" + std::to_string(domain)};
       for (const auto& s : extra_sets) a.insert(a.end(), {"--set", s});
       return a;
@@ -263,16 +312,31 @@ class AirGround : public ::testing::Test {
       full.insert(full.end(), argv.begin(), argv.end());
       return full;
     };
-    ChildProcess ground(with_ns(link_->ground(), args(kGroundProfile, run.out)), root_ + "/" + name + "_ground.log");
-    ChildProcess air(with_ns(link_->air(), args(kAirProfile, root_ + "/" + name + "_air")), root_ + "/" + name + "_air.log");
+    auto ground_args = args(kGroundProfile, sequence_, run.out);
+    ground_args.insert(ground_args.end(), {"--set", "streams=" + std::to_string(airs.size())});
+    ChildProcess ground(with_ns(link_->ground(), ground_args), root_ + "/" + name + "_ground.log");
+    std::vector<std::unique_ptr<ChildProcess>> air;
+    for (size_t i = 0; i < airs.size(); ++i) {
+      const Air& a = airs[i];
+      auto air_args = args(kAirProfile, a.sequence.empty() ? sequence_ : a.sequence, root_ + "/" + name + "_air" + std::to_string(i));
+      air_args.insert(air_args.end(), {"--set", "stream_id=" + a.stream_id, "--set",
+                                       "air_domain=" + std::to_string(a.air_domain ? a.air_domain : domain + 1)});
+      air.push_back(std::make_unique<ChildProcess>(with_ns(link_->air(static_cast<int>(i)), air_args),
+                                                   root_ + "/" + name + "_air" + std::to_string(i) + ".log"));
+    }
     LinkCapture capture(link_->ground(), link_->ground_dev());
     const auto deadline = std::chrono::steady_clock::now() + timeout;
-    if (while_running) while_running(air);
-    run.ground_code = ground.wait(std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()));
-    run.air_code = air.wait(std::max(std::chrono::milliseconds(1000), std::chrono::duration_cast<std::chrono::milliseconds>(
-                                                                          deadline - std::chrono::steady_clock::now())));
+    auto left = [&] {
+      return std::max(std::chrono::milliseconds(1000),
+                      std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now()));
+    };
+    if (while_running) while_running(*air[0]);
+    run.ground_code = ground.wait(left());
+    for (auto& a : air) run.air_codes.push_back(a->wait(left()));
     // A half that did not end by itself is stopped the way an operator would (the launcher stops its children).
-    for (ChildProcess* p : {&ground, &air}) {
+    std::vector<ChildProcess*> all = {&ground};
+    for (auto& a : air) all.push_back(a.get());
+    for (ChildProcess* p : all) {
       if (!p->wait(std::chrono::milliseconds(0)).has_value()) {
         p->signal(SIGTERM);
         p->wait(std::chrono::seconds(20));
@@ -280,10 +344,23 @@ class AirGround : public ::testing::Test {
     }
     run.link_bytes = capture.stop();
     run.captured = capture.started();
-    run.air_log = air.log();
+    for (auto& a : air) run.air_logs.push_back(a->log());
     run.ground_log = ground.log();
     run.air_tx_bytes = link_->air_tx_bytes() - tx_before;
     return run;
+  }
+
+  // The ground's results against `uavmot process` on the same sequence: homographies exactly,
+  // boxes to the last printed digit (float32 on the downlink).
+  static void expect_same_results(const std::string& out, const std::string& process_dir = root_ + "/process_paper") {
+    const std::string expected = read_file(process_dir + "/tracks.txt");
+    ASSERT_FALSE(expected.empty()) << "the in-process run found no tracks: nothing would be compared";
+    EXPECT_EQ(read_file(out + "/homographies.txt"), read_file(process_dir + "/homographies.txt"));
+    for (const char* file : {"tracks.txt", "tracks_obb.csv", "regions.txt"}) {
+      const auto c = testing::compare_to_last_digit(out + "/" + file, process_dir + "/" + file);
+      EXPECT_TRUE(c.equal()) << file << ": " << c.difference;
+      std::printf("[airground] %s: %d numbers differ from uavmot process in their last digit\n", file, c.numbers_differing);
+    }
   }
 
   static std::string root_, sequence_;
@@ -291,42 +368,55 @@ class AirGround : public ::testing::Test {
 };
 std::string AirGround::root_, AirGround::sequence_;
 
-TEST_F(AirGround, LosslessSplitDeliversTheSameTracksAsInProcessAndNoFrames) {
-  const Run run = run_split("lossless", 61);
-  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log;
-  ASSERT_EQ(run.air_code, 0) << run.air_log;
-  const std::string expected = read_file(root_ + "/process/tracks.txt");
-  ASSERT_FALSE(expected.empty()) << "the in-process run found no tracks: nothing would be compared";
-  EXPECT_EQ(read_file(run.out + "/tracks.txt"), expected);
-  for (const char* file : {"tracks_obb.csv", "homographies.txt", "regions.txt"}) {
-    EXPECT_EQ(read_file(run.out + "/" + file), read_file(root_ + "/process/" + file)) << file;
+TEST_F(AirGround, LosslessSplitDeliversTheInProcessResultsAndOnlyCompactTopicsCrossTheLink) {
+  const Run run = run_split("lossless", 120);
+  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log();
+  ASSERT_EQ(run.air_code(), 0) << run.air_log();
+  expect_same_results(run.out);
+  // What the downlink does not carry is not pretended: no features.csv, no clusters.txt.
+  EXPECT_FALSE(fs::exists(run.out + "/features.csv"));
+  EXPECT_FALSE(fs::exists(run.out + "/clusters.txt"));
+
+  // Payload per frame (the downlink's own count) and everything on the wire per frame, discovery
+  // and health included. One 8-bit frame of the sequence alone is larger than all of it.
+  const auto payload = downlink_bytes(run.air_log());
+  ASSERT_EQ(payload.size(), 3u) << run.air_log();
+  uint64_t payload_total = 0;
+  for (const auto& [topic, bytes] : payload) {
+    payload_total += bytes;
+    std::printf("[airground] lossless: %s %llu bytes (%.0f per frame)\n", topic.c_str(), static_cast<unsigned long long>(bytes),
+                static_cast<double>(bytes) / kFrames);
   }
-  // The results crossed the veth (not shared memory) and the frames did not: one 8-bit frame of
-  // the sequence alone is larger than everything the air sent per frame.
+  const double wire_per_frame = static_cast<double>(run.air_tx_bytes) / kFrames;
+  std::printf("[airground] lossless: payload %.0f bytes per frame (%.3f Mbit/s at 25 fps); on the wire %.0f (%.3f Mbit/s)\n",
+              static_cast<double>(payload_total) / kFrames, payload_total * 25.0 * 8.0 / kFrames / 1e6, wire_per_frame,
+              wire_per_frame * 25.0 * 8.0 / 1e6);
+  EXPECT_LT(static_cast<double>(payload_total) / kFrames, kBudgetBytesPerFrame) << "tracks + regions + motion over 1 Mbit/s";
+  // A short run pays discovery and health once: allow 25 % over the budget on the wire.
+  EXPECT_LT(wire_per_frame, 1.25 * kBudgetBytesPerFrame);
   const auto frame_bytes = fs::file_size(fs::directory_iterator(sequence_ + "/img1")->path());
-  const uint64_t per_frame = run.air_tx_bytes / kFrames;
-  std::printf("[airground] lossless: air sent %llu bytes over the link, %llu per frame (%.3f Mbit/s at 25 fps)\n",
-              static_cast<unsigned long long>(run.air_tx_bytes), static_cast<unsigned long long>(per_frame),
-              per_frame * 25.0 * 8.0 / 1e6);
-  // Without security the stream id and topic names are readable on the wire (the control for the
-  // security test, which expects them gone).
+  EXPECT_LT(wire_per_frame, frame_bytes / 4.0) << "frames (" << frame_bytes << " bytes each, compressed on disk) crossed the link";
+
+  // Without security the stream id and the downlink's topic names are readable on the wire (the
+  // control for the security test). The air's own chain (frames, motion, segmentation, tracks)
+  // runs on shared memory in its own domain: not even its discovery reaches the link.
   ASSERT_TRUE(run.captured);
   EXPECT_NE(run.link_bytes.find("uav1"), std::string::npos);
-  EXPECT_NE(run.link_bytes.find("uavmot/segmentation"), std::string::npos);
-  EXPECT_GT(run.air_tx_bytes, 20000u) << "almost nothing crossed the link: did the halves talk over shared memory?";
-  EXPECT_LT(per_frame, frame_bytes / 4) << "frames (" << frame_bytes << " bytes each, compressed on disk) crossed the link";
+  EXPECT_NE(run.link_bytes.find("uavmot/downlink/tracks"), std::string::npos);
+  for (const char* internal : {"uavmot/frames", "uavmot/motion", "uavmot/segmentation", "uavmot/tracks"}) {
+    EXPECT_EQ(run.link_bytes.find(internal), std::string::npos) << internal << " appeared on the link";
+  }
 }
 
 TEST_F(AirGround, FivePercentRandomLossLosesNoReliableSample) {
   ASSERT_TRUE(link_->add_random_loss(5)) << "nft could not add the loss rule";
-  const Run run = run_split("loss", 62);
-  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log;
-  ASSERT_EQ(run.air_code, 0) << run.air_log;
+  const Run run = run_split("loss", 122);
+  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log();
+  ASSERT_EQ(run.air_code(), 0) << run.air_log();
   const uint64_t dropped = link_->dropped_packets();
   std::printf("[airground] loss: nft dropped %llu packets\n", static_cast<unsigned long long>(dropped));
   EXPECT_GT(dropped, 10u) << "the loss rule dropped (almost) nothing: the test would not show anything";
-  EXPECT_EQ(read_file(run.out + "/tracks.txt"), read_file(root_ + "/process/tracks.txt"));
-  EXPECT_EQ(read_file(run.out + "/regions.txt"), read_file(root_ + "/process/regions.txt"));
+  expect_same_results(run.out);
 }
 
 // Fast DDS Discovery Server in the ground namespace instead of multicast, which the link drops.
@@ -340,19 +430,19 @@ TEST_F(AirGround, DiscoveryServerReplacesBlockedMulticastAndSurvivesARestart) {
   };
   // Without the server the halves never find each other: the ground is still waiting after 12 s.
   {
-    const Run run = run_split("no_server", 64, {}, std::chrono::seconds(12));
+    const Run run = run_split("no_server", 124, {}, std::chrono::seconds(12));
     EXPECT_FALSE(run.ground_code.has_value()) << "the halves met with multicast blocked and no server:\n" << run.ground_log;
     EXPECT_FALSE(fs::exists(run.out + "/tracks.txt") && !read_file(run.out + "/tracks.txt").empty());
   }
   auto server = start_server();
   std::this_thread::sleep_for(std::chrono::milliseconds(500));
   // The server dies mid-run and comes back; the matched endpoints carry on and the run completes.
-  const Run run = run_split("discovery_server", 65, {"discovery_server=10.200.0.2:11811"}, std::chrono::seconds(170),
+  const Run run = run_split("discovery_server", 126, {"discovery_server=10.200.0.2:11811"}, std::chrono::seconds(170),
                             [&](const ChildProcess&) {
     // Once the chain runs (every endpoint matched, results flowing: ~10 frames' worth crossed the link).
     const uint64_t start = link_->air_tx_bytes();
     const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(90);
-    while (link_->air_tx_bytes() - start < 200000 && std::chrono::steady_clock::now() < until) {
+    while (link_->air_tx_bytes() - start < 40000 && std::chrono::steady_clock::now() < until) {
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
     }
     server->signal(SIGTERM);
@@ -360,35 +450,62 @@ TEST_F(AirGround, DiscoveryServerReplacesBlockedMulticastAndSurvivesARestart) {
     std::this_thread::sleep_for(std::chrono::seconds(1));
     server = start_server();
   });
-  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log;
-  ASSERT_EQ(run.air_code, 0) << run.air_log;
-  EXPECT_EQ(read_file(run.out + "/tracks.txt"), read_file(root_ + "/process/tracks.txt"));
+  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log();
+  ASSERT_EQ(run.air_code(), 0) << run.air_log();
+  expect_same_results(run.out);
   EXPECT_NE(read_file(server_log).find("Server is running"), std::string::npos) << read_file(server_log);
 }
 
-// DDS Security on (tools/make_security.sh, --set qos_dir=DIR): the chain still delivers identical
-// tracks, nothing readable crosses the link, and neither a participant without a certificate
-// nor one whose permissions do not allow it reads anything.
-TEST_F(AirGround, SecurityEncryptsTheLinkAndKeepsOutsidersAndUnauthorisedNodesBlind) {
+// DDS Security on (tools/make_security.sh, --set qos_dir=DIR): the chain still delivers the same
+// results, nothing readable crosses the link, and participants without a certificate, without
+// permission, or with permissions the CA did not sign can neither read nor inject.
+TEST_F(AirGround, SecurityEncryptsTheLinkAndKeepsOutsidersOutOfTheGroundStation) {
   const std::string security = root_ + "/security";
   ChildProcess make({"/bin/sh", std::string(UAVMOT_SOURCE_DIR) + "/tools/make_security.sh", security}, root_ + "/make_security.log");
   ASSERT_EQ(make.wait(std::chrono::seconds(60)), 0) << make.log();
-  auto outsider = [&](const std::string& name, const std::map<std::string, std::string>& env) {
-    auto argv = link_->in(link_->ground());
-    argv.insert(argv.end(), {"/usr/bin/env"});
-    for (const auto& [k, v] : env) argv.push_back(k + "=" + v);
-    argv.insert(argv.end(), {binary("uavmot-sink"), "--out", root_ + "/" + name, "--domain", "66", "--transport", "udp"});
-    return std::make_unique<ChildProcess>(argv, root_ + "/" + name + ".log");
+  // A rogue: the real sink's certificate, with permissions that let it publish everything, signed
+  // by a CA of its own. Its own Fast DDS accepts them; the ground must not.
+  const std::string rogue = root_ + "/security_rogue";
+  ChildProcess make_rogue({"/bin/sh", "-c",
+                           "set -e; sh " + std::string(UAVMOT_SOURCE_DIR) + "/tools/make_security.sh " + rogue + " >/dev/null; cd " + rogue +
+                               "; sed 's|<publish><topics>.*</topics></publish>|<publish><topics><topic>*</topic></topics></publish>|' "
+                               "permissions.xml > all.xml; openssl smime -sign -in all.xml -text -out all.smime -signer ca.pem -inkey ca.key; "
+                               "sed -e 's|" + rogue + "/sink.pem|" + security + "/sink.pem|' -e 's|" + rogue + "/sink.key|" + security +
+                               "/sink.key|' -e 's|identity_ca</name><value>file://" + rogue + "/ca.pem|identity_ca</name><value>file://" +
+                               security + "/ca.pem|' -e 's|permissions.smime|all.smime|' sink.xml > forged.xml"},
+                          root_ + "/make_rogue.log");
+  ASSERT_EQ(make_rogue.wait(std::chrono::seconds(60)), 0) << make_rogue.log();
+
+  auto in_ground = [&](const std::string& name, const std::map<std::string, std::string>& env, std::vector<std::string> argv) {
+    auto full = link_->in(link_->ground());
+    full.push_back("/usr/bin/env");
+    for (const auto& [k, v] : env) full.push_back(k + "=" + v);
+    full.insert(full.end(), argv.begin(), argv.end());
+    full.insert(full.end(), {"--domain", "128", "--transport", "udp"});
+    return std::make_unique<ChildProcess>(full, root_ + "/" + name + ".log");
   };
-  // No certificate at all (the plain profiles), and the source's identity, which may read only health.
-  auto plain = outsider("outsider_plain", {});
-  auto unauthorised = outsider("outsider_source_identity", {{"UAVMOT_QOS_PROFILES", security + "/source.xml"}});
-  const Run run = run_split("secure", 66, {"qos_dir=" + security});
-  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log;
-  ASSERT_EQ(run.air_code, 0) << run.air_log;
-  EXPECT_EQ(read_file(run.out + "/tracks.txt"), read_file(root_ + "/process/tracks.txt"));
+  auto sink = [&](const std::string& name, const std::map<std::string, std::string>& env) {
+    return in_ground(name, env, {binary("uavmot-sink"), "--downlink", "--out", root_ + "/" + name});
+  };
+  auto injector = [&](const std::string& name, const std::map<std::string, std::string>& env) {
+    return in_ground(name, env, {std::string(UAVMOT_BINARY_DIR) + "/tests/uavmot-test-inject", "--seconds", "40",
+                                 "--frames", std::to_string(kFrames), "--mode", "live"});
+  };
+  // Readers: no certificate at all (the plain profiles), and the source's identity, which may read only health.
+  auto plain = sink("outsider_plain", {});
+  auto unauthorised = sink("outsider_source_identity", {{"UAVMOT_QOS_PROFILES", security + "/source.xml"}});
+  // Writers of made-up tracks for uav1: no certificate; the sink's identity, which may not publish
+  // tracks; the forged permissions.
+  auto inject_plain = injector("inject_plain", {});
+  auto inject_sink = injector("inject_sink_identity", {{"UAVMOT_QOS_PROFILES", security + "/sink.xml"}});
+  auto inject_forged = injector("inject_forged_permissions", {{"UAVMOT_QOS_PROFILES", rogue + "/forged.xml"}});
+  const Run run = run_split("secure", 128, {"qos_dir=" + security});
+  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log();
+  ASSERT_EQ(run.air_code(), 0) << run.air_log();
+  expect_same_results(run.out);
+  EXPECT_EQ(read_file(run.out + "/tracks_obb.csv").find(",424242,"), std::string::npos) << "an injected track reached the files";
   ASSERT_TRUE(run.captured);
-  EXPECT_GT(run.link_bytes.size(), 100000u) << "the capture saw (almost) nothing";
+  EXPECT_GT(run.link_bytes.size(), 50000u) << "the capture saw (almost) nothing";
   EXPECT_EQ(run.link_bytes.find("uav1"), std::string::npos) << "the stream id crossed the link in plain text";
   // (Topic names do cross in plain text, inside the signed permissions document that the
   // authentication handshake carries; the samples and the endpoint discovery are encrypted.)
@@ -399,25 +516,76 @@ TEST_F(AirGround, SecurityEncryptsTheLinkAndKeepsOutsidersAndUnauthorisedNodesBl
     ADD_FAILURE() << "a node without read permission is running a sink:\n" << unauthorised->log();
   }
   EXPECT_NE(unauthorised->log().find("topic not found in allow rule"), std::string::npos) << unauthorised->log();
-  for (auto* p : {plain.get(), unauthorised.get()}) {
+  // The sink's identity may not publish tracks: its own access control refuses the writer.
+  EXPECT_EQ(inject_sink->wait(std::chrono::seconds(10)), 3) << inject_sink->log();
+  for (auto* p : {plain.get(), unauthorised.get(), inject_plain.get(), inject_forged.get()}) {
     p->signal(SIGTERM);
     p->wait(std::chrono::seconds(10));
   }
+  // The other two wrote all along. The forged one matched no reader; the plain one only its
+  // fellow outsider, the plain sink (two unauthenticated participants do talk to each other).
+  for (auto* p : {inject_plain.get(), inject_forged.get()}) EXPECT_EQ(p->log().find("wrote 0 samples"), std::string::npos) << p->log();
+  EXPECT_NE(inject_forged->log().find("matched at most 0 reader(s)"), std::string::npos) << inject_forged->log();
+  EXPECT_NE(inject_forged->log().find("Error validating remote permissions"), std::string::npos) << inject_forged->log();
+  EXPECT_NE(inject_plain->log().find("matched at most 1 reader(s)"), std::string::npos) << inject_plain->log();
+  // Neither outsider sink got anything from the air: no homographies, no regions, no real track.
   for (const char* name : {"outsider_plain", "outsider_source_identity"}) {
-    const std::string tracks = root_ + "/" + name + "/tracks.txt";
-    EXPECT_TRUE(!fs::exists(tracks) || read_file(tracks).empty()) << name << " read tracks";
-    const std::string regions = root_ + "/" + name + "/regions.txt";
-    EXPECT_TRUE(!fs::exists(regions) || read_file(regions).empty()) << name << " read regions";
+    for (const char* file : {"homographies.txt", "regions.txt"}) {
+      const std::string path = root_ + "/" + name + "/" + file;
+      EXPECT_TRUE(!fs::exists(path) || read_file(path).empty()) << name << " read " << file;
+    }
+    std::ifstream tracks(root_ + "/" + name + "/tracks.txt");
+    for (std::string line; std::getline(tracks, line);) EXPECT_NE(line.find(",424242,"), std::string::npos) << name << ": " << line;
   }
 }
 
-// Last on purpose: when it ran before the discovery-server and security tests, those failed to
-// match some endpoints (3 of 3 runs; they pass when run before it or alone). Not understood yet.
-TEST_F(AirGround, LiveChainKeepsRunningOverATwoMegabitLink) {
+// Two UAVs with their own stream ids and sequences feed one ground station over a bridge; the
+// ground files each stream apart, each equal to `uavmot process` of that UAV's sequence.
+TEST_F(AirGround, TwoUavsFeedOneGroundStationEachStreamKeptApart) {
+  link_.reset();
+  link_ = std::make_unique<Link>(2);
+  ASSERT_TRUE(link_->ok()) << "could not create two air namespaces and the bridge";
+  const Run run = run_split("two_uavs", 130, {}, std::chrono::seconds(240), {},
+                            {Air{"uav1", sequence_, 131}, Air{"uav2", root_ + "/paper_b", 132}});
+  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air 0 ---\n" << run.air_logs[0] << "\n--- air 1 ---\n" << run.air_logs[1];
+  ASSERT_EQ(run.air_codes[0], 0) << run.air_logs[0];
+  ASSERT_EQ(run.air_codes[1], 0) << run.air_logs[1];
+  expect_same_results(run.out + "/uav1", root_ + "/process_paper");
+  expect_same_results(run.out + "/uav2", root_ + "/process_paper_b");
+  EXPECT_EQ(last_frame_in(run.out + "/uav2/homographies.txt"), kSecondFrames);
+}
+
+// The link goes down for longer than the 5 s lease (the halves drop each other) and comes back:
+// they find each other again, the downlink's history fills the gap, and the ground's files are
+// complete.
+TEST_F(AirGround, LinkDownAndUpAgainRediscoversAndResumes) {
+  const Run run = run_split("link_drop", 133, {}, std::chrono::seconds(200), [&](const ChildProcess&) {
+    const uint64_t start = link_->air_tx_bytes();
+    const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(90);
+    while (link_->air_tx_bytes() - start < 60000 && std::chrono::steady_clock::now() < until) {
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
+    }
+    ASSERT_TRUE(link_->set_link(false));
+    std::this_thread::sleep_for(std::chrono::seconds(8));
+    ASSERT_TRUE(link_->set_link(true));
+  });
+  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log();
+  ASSERT_EQ(run.air_code(), 0) << run.air_log();
+  // The downlink lost its ground reader (lease expired) and found it again (rediscovered).
+  const std::regex lost(R"(uavmot/downlink/\w+: waiting for 1 reader\(s\), 0 matched)");
+  const std::regex found(R"(uavmot/downlink/\w+: 1 reader\(s\) matched, going on)");
+  EXPECT_TRUE(std::regex_search(run.air_log(), lost)) << run.air_log();
+  EXPECT_TRUE(std::regex_search(run.air_log(), found)) << run.air_log();
+  expect_same_results(run.out);
+}
+
+// Last on purpose (see docs/deployment.md, known problems): the link limited to 2 Mbit/s
+// (tbf) in live mode. The compact downlink needs well under 1 Mbit/s, so the chain keeps up.
+TEST_F(AirGround, LiveChainKeepsUpOverATwoMegabitLink) {
   ASSERT_TRUE(link_->limit_downlink("2mbit")) << "tc could not add the tbf qdisc";
   // Live: the source publishes at the sequence's 25 fps. The halves are stopped after 60 s if the
   // end of stream has not made it through by then (what the sink has is written on stop).
-  const Run run = run_split("tbf", 63, {"mode=live"}, std::chrono::seconds(60));
+  const Run run = run_split("tbf", 135, {"mode=live"}, std::chrono::seconds(60));
   const int last_track_frame = last_frame_in(run.out + "/tracks.txt");
   const int last_motion_frame = last_frame_in(run.out + "/homographies.txt");
   const std::string tc = capture(std::string(kIp) + " netns exec " + link_->air() + " tc -s qdisc show dev " + link_->air_dev());
@@ -426,15 +594,12 @@ TEST_F(AirGround, LiveChainKeepsRunningOverATwoMegabitLink) {
               static_cast<unsigned long long>(run.air_tx_bytes), run.ground_code.has_value() ? "yes" : "no", last_track_frame,
               last_motion_frame, tc.c_str());
   EXPECT_NE(tc.find("tbf"), std::string::npos) << tc;
-  // Results kept arriving: the chain did not stall on the slow link. It does fall behind: the
-  // downlink needs about 4.6 Mbit/s at 25 fps on this sequence (docs/benchmarks/airground.md),
-  // so live mode drops samples and the run ends (stopped at 60 s) short of the last frame. Seen
-  // over 4 runs: tracks up to frame 15-57, motion up to 24-80 of 80; this only checks that
-  // results got past the start and nothing failed.
-  EXPECT_GE(last_track_frame, kFrames / 8) << run.ground_log << "\n--- air ---\n" << run.air_log;
-  EXPECT_GE(last_motion_frame, kFrames / 8);
-  EXPECT_EQ(run.ground_code.value_or(0), 0) << run.ground_log;  // nullopt: still running at 60 s, stopped
-  EXPECT_EQ(run.air_code.value_or(0), 0) << run.air_log;
+  // The end of stream got through and results reached the end of the sequence (live mode may
+  // skip frames when the host is loaded; the last ones are never old enough to be skipped).
+  EXPECT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log();
+  EXPECT_EQ(run.air_code(), 0) << run.air_log();
+  EXPECT_GE(last_track_frame, kFrames - 5);
+  EXPECT_GE(last_motion_frame, kFrames - 5);
 }
 
 }  // namespace

@@ -32,7 +32,7 @@ ResultFilesWriter::ResultFilesWriter(ResultFilesOptions options) : options_(std:
     features_ << "frame,feature_id,x,y,vx,vy,moving\n";
   }
   if (options_.write_segmentation) {
-    clusters_ = open("clusters.txt");
+    if (options_.write_clusters) clusters_ = open("clusters.txt");
     regions_ = open("regions.txt");
   }
 }
@@ -66,6 +66,7 @@ void ResultFilesWriter::write_segmentation(const SegmentationResult& segmentatio
   if (closed_) throw std::logic_error("ResultFilesWriter used after close()");
   if (!options_.write_segmentation) return;
   for (const auto& c : segmentation.clusters) {
+    if (!options_.write_clusters) break;
     clusters_ << mot_box_line(segmentation.frame_index, -1, axis_aligned_bounds(c.box),
                               static_cast<double>(c.feature_ids.size()));
   }

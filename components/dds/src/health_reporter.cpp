@@ -2,6 +2,8 @@
 
 #include <unistd.h>
 
+#include <map>
+
 namespace uavmot::dds {
 
 HealthReporter::HealthReporter(Participant& participant, std::string component, std::string stream_id,
@@ -50,6 +52,16 @@ void HealthReporter::report(msg::ComponentState state, const std::string& messag
   sample.invalid_samples(invalid_);
   sample.bytes_out(bytes_out_);
   sample.message(message.substr(0, 255));
+  // One entry per topic name (a reader and a writer of the same name add up), at most 16.
+  std::map<std::string, msg::TopicTraffic> traffic;
+  for (const auto& [topic, add_counts] : watched_) {
+    msg::TopicTraffic& t = traffic[topic];
+    t.topic(topic.substr(0, 64));
+    add_counts(t);
+  }
+  for (const auto& [topic, t] : traffic) {
+    if (sample.topics().size() < 16) sample.topics().push_back(t);
+  }
   writer_->write(sample);
   last_report_ = now;
   window_frames_ = 0;

@@ -11,6 +11,8 @@ void add_node_options(CLI::App& app, NodeOptions& options) {
   group->add_option("--transport", options.dds.participant_profile,
                     "participant profile: local (shared memory, one host) or udp (between hosts)")
       ->capture_default_str();
+  group->add_option("--discovery-server", options.dds.discovery_server,
+                    "IP:PORT of a Fast DDS Discovery Server (id 0) instead of multicast discovery; empty: multicast");
   group->add_option("--mode", options.mode, "lossless: nothing dropped, slow readers hold writers back; live: newest wins")
       ->check(CLI::IsMember({"lossless", "live"}))
       ->capture_default_str();

@@ -6,6 +6,7 @@
 #include <set>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastrtps/utils/IPLocator.h>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 #include <unistd.h>
@@ -34,6 +35,27 @@ void load_profiles_once(const std::string& file) {
   }
   loaded.insert(file);
 }
+// Makes the participant a client of the Discovery Server with id 0 at "IP:PORT".
+void use_discovery_server(fdds::DomainParticipantQos& qos, const std::string& address) {
+  namespace rtps = eprosima::fastrtps::rtps;
+  const auto colon = address.rfind(':');
+  int port = 0;
+  try {
+    port = colon == std::string::npos ? 0 : std::stoi(address.substr(colon + 1));
+  } catch (const std::exception&) {
+  }
+  rtps::Locator_t locator;
+  if (port <= 0 || port > 65535 || !rtps::IPLocator::setIPv4(locator, address.substr(0, colon))) {
+    throw InputError("discovery server '" + address + "' is not IPv4:PORT");
+  }
+  locator.port = static_cast<uint32_t>(port);
+  rtps::RemoteServerAttributes server;
+  server.ReadguidPrefix("44.53.00.5f.45.50.52.4f.53.49.4d.41");  // fast-discovery-server -i 0
+  server.metatrafficUnicastLocatorList.push_back(locator);
+  auto& discovery = qos.wire_protocol().builtin.discovery_config;
+  discovery.discoveryProtocol = rtps::DiscoveryProtocol_t::CLIENT;
+  discovery.m_DiscoveryServers.push_back(server);
+}
 }  // namespace
 
 std::string default_profiles_file() {
@@ -53,6 +75,7 @@ Participant::Participant(DdsOptions options) : options_(std::move(options)) {
     throw InputError("participant profile '" + options_.participant_profile + "' is not in '" + options_.profiles_file + "'");
   }
   qos.name(options_.participant_name + "@" + std::to_string(::getpid()));
+  if (!options_.discovery_server.empty()) use_discovery_server(qos, options_.discovery_server);
   participant_ = factory->create_participant(options_.domain_id, qos);
   if (!participant_) throw InputError("cannot create a DDS participant on domain " + std::to_string(options_.domain_id));
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);

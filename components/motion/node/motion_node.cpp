@@ -51,6 +51,8 @@ int motion_main(int argc, char** argv) {
       auto motion_out = participant.make_writer<msg::MotionEstimatePubSubType>(dds::kMotionTopic, dds::TopicClass::Chain);
       if (node.dds.mode == dds::DeliveryMode::Lossless) motion_out->set_required_readers(node.wait_subscribers);
       dds::HealthReporter health(participant, "motion", "*");
+      health.watch(*frames);
+      health.watch(*motion_out);
       spdlog::info("{} -> {} ({}, waiting for {} reader(s))", dds::kFramesTopic, dds::kMotionTopic, node.mode,
                    node.wait_subscribers);
       std::map<std::string, motion::MotionEstimator> estimators;
@@ -69,7 +71,7 @@ int motion_main(int argc, char** argv) {
             eos.stream_id(stream);
             eos.frame_index(sample.frame_index());
             eos.end_of_stream(true);
-            motion_out->write_reliably(eos, std::chrono::seconds(10));
+            motion_out->write_reliably(eos, dds::end_of_stream_patience(node.dds.mode));
             ends.end(stream);
             continue;
           }
@@ -98,7 +100,7 @@ int motion_main(int argc, char** argv) {
           health.set_bytes_out(motion_out->bytes_sent());
         }
       }
-      motion_out->flush(std::chrono::seconds(10));
+      motion_out->flush(dds::end_of_stream_patience(node.dds.mode));
       health.report(msg::ComponentState::FINISHED);
       return kExitOk;
     };

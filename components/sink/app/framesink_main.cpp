@@ -54,6 +54,7 @@ int framesink_main(int argc, char** argv) {
       dds::Participant participant(node.dds);
       auto reader = participant.make_reader<msg::FramePubSubType>(dds::kFramesTopic, dds::TopicClass::Frames);
       dds::HealthReporter health(participant, "framesink", "*");
+      health.watch(*reader);
       std::set<std::string> finished;
       uint64_t received = 0;
       auto last_sample = std::chrono::steady_clock::now();

@@ -1,6 +1,8 @@
 // uavmot-sink: subscribes to motion, segmentation and tracks and writes the same files as
 // `uavmot process` (tracks.txt, tracks_obb.csv, homographies.txt, features.csv, clusters.txt,
 // regions.txt, summary.json) through the same writer, so lossless runs are byte-identical.
+// With --downlink it reads the compact topics that cross an air -> ground link instead
+// (uavmot/downlink/*: no features or clusters, float32 boxes; docs/deployment.md).
 // With several streams, each gets a folder of its own under --out.
 
 #include <filesystem>
@@ -9,6 +11,7 @@
 
 #include <spdlog/spdlog.h>
 
+#include "downlinkPubSubTypes.h"
 #include "motionPubSubTypes.h"
 #include "segmentationPubSubTypes.h"
 #include "tracksPubSubTypes.h"
@@ -16,6 +19,7 @@
 #include "uavmot/core/result_files.hpp"
 #include "uavmot/core/shutdown.hpp"
 #include "uavmot/dds/chain_convert.hpp"
+#include "uavmot/dds/downlink_convert.hpp"
 #include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/dds/node_support.hpp"
@@ -23,112 +27,141 @@
 namespace uavmot {
 namespace {
 
-struct StreamFiles {
-  std::unique_ptr<ResultFilesWriter> writer;
-  bool motion_ended = false, segmentation_ended = false, tracks_ended = false;
-  bool done() const { return motion_ended && segmentation_ended && tracks_ended; }
-};
-
-int sink_main(int argc, char** argv) {
-  dds::NodeOptions node;
+struct SinkOptions {
   std::string out_dir;
   double gsd_m = 0.0, fps = 25.0, idle_timeout_s = 0.0;
   int streams = 1;
+  bool downlink = false;
+};
+
+struct StreamFiles {
+  std::unique_ptr<ResultFilesWriter> writer;
+  bool motion_ended = false, segmentation_ended = false, tracks_ended = false;
+  // Last frame written per topic: a writer's history sent again after the link was lost and
+  // found (transient-local downlink topics) repeats frames already written.
+  int64_t last_motion = 0, last_segmentation = 0, last_tracks = 0;
+  bool done() const { return motion_ended && segmentation_ended && tracks_ended; }
+};
+
+// Reads the three topics (full or downlink types) until every expected stream ended on all three.
+template <class MotionPub, class SegmentationPub, class TracksPub>
+int run_sink(dds::Participant& participant, const SinkOptions& o, dds::TopicClass topic_class, const char* motion_topic,
+             const char* segmentation_topic, const char* tracks_topic) {
+  auto motion = participant.make_reader<MotionPub>(motion_topic, topic_class);
+  auto segmentation = participant.make_reader<SegmentationPub>(segmentation_topic, topic_class);
+  auto tracks = participant.make_reader<TracksPub>(tracks_topic, topic_class);
+  dds::HealthReporter health(participant, "sink", "*");
+  health.watch(*motion);
+  health.watch(*segmentation);
+  health.watch(*tracks);
+  dds::RejectLog rejects;
+  std::map<std::string, StreamFiles> files;
+  const auto start = std::chrono::steady_clock::now();
+  auto last_sample = start;
+  bool started = false;
+
+  auto files_for = [&](const std::string& stream) -> StreamFiles& {
+    auto [it, fresh] = files.try_emplace(stream);
+    if (fresh) {
+      ResultFilesOptions r;
+      r.directory = o.streams > 1 ? (std::filesystem::path(o.out_dir) / stream).string() : o.out_dir;
+      r.fps = o.fps;
+      r.gsd_m = o.gsd_m;
+      // The downlink carries neither features nor clusters: no empty files pretending otherwise.
+      r.write_features = r.write_clusters = !o.downlink;
+      it->second.writer = std::make_unique<ResultFilesWriter>(r);
+      spdlog::info("stream '{}' -> {}", stream, r.directory);
+    }
+    return it->second;
+  };
+  auto finished = [&]() {
+    int done = 0;
+    for (const auto& [id, f] : files) done += f.done() ? 1 : 0;
+    return done >= o.streams;
+  };
+  // Each topic comes from one writer, in frame order: write each as it arrives.
+  auto drain = [&](auto& reader, auto write, auto mark_end, int64_t StreamFiles::*last) {
+    typename std::remove_reference_t<decltype(*reader)>::Sample sample;
+    bool any = false;
+    while (reader->take(sample)) {
+      any = true;
+      StreamFiles& f = files_for(sample.stream_id().to_string());
+      if (sample.end_of_stream()) {
+        mark_end(f);
+        continue;
+      }
+      if (sample.frame_index() <= f.*last) continue;  // already written
+      f.*last = sample.frame_index();
+      std::string why;
+      auto value = dds::from_msg(sample, why);
+      if (!value) {
+        health.invalid_sample();
+        rejects.log(reader->topic(), why);
+        continue;
+      }
+      write(f, *value);
+    }
+    return any;
+  };
+
+  while (!shutdown_requested() && !finished()) {
+    bool any = drain(motion, [&](StreamFiles& f, const MotionEstimate& m) { f.writer->write_motion(m); health.frame_in(); },
+                     [](StreamFiles& f) { f.motion_ended = true; }, &StreamFiles::last_motion);
+    any |= drain(segmentation, [](StreamFiles& f, const SegmentationResult& s) { f.writer->write_segmentation(s); },
+                 [](StreamFiles& f) { f.segmentation_ended = true; }, &StreamFiles::last_segmentation);
+    any |= drain(tracks, [&](StreamFiles& f, const TrackList& t) {
+                   f.writer->write_tracks(t);
+                   health.frame_out(t.frame_index, 0.0, dds::latency_ms_since(t.capture_time_ns));
+                 },
+                 [](StreamFiles& f) { f.tracks_ended = true; }, &StreamFiles::last_tracks);
+    health.tick();
+    const auto now = std::chrono::steady_clock::now();
+    if (any) {
+      last_sample = now;
+      started = true;
+    } else {
+      tracks->wait_for_data(std::chrono::milliseconds(50));
+      if (started && o.idle_timeout_s > 0 && now - last_sample > std::chrono::duration<double>(o.idle_timeout_s)) {
+        spdlog::error("nothing arrived for {} s; closing the files with what was received", o.idle_timeout_s);
+        break;
+      }
+    }
+  }
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (auto& [id, f] : files) {
+    RunSummary summary;
+    summary.input = "dds:" + id;
+    summary.wall_time_s = seconds;
+    const int64_t frames = f.writer->frames_written();
+    f.writer->close(summary);
+    spdlog::info("stream '{}': {} frames written", id, frames);
+  }
+  health.report(msg::ComponentState::FINISHED);
+  return finished() ? kExitOk : kExitFailure;
+}
+
+int sink_main(int argc, char** argv) {
+  dds::NodeOptions node;
+  SinkOptions o;
   return run_app(argc, argv, "sink", "write the chain's results to files (motion, segmentation, tracks -> tracks.txt ...)", [&](CLI::App& app) {
-    app.add_option("--out", out_dir, "output folder (one sub-folder per stream when --streams > 1)")->required();
-    app.add_option("--gsd", gsd_m, "ground sampling distance, m/px: adds metric columns")->check(CLI::PositiveNumber);
-    app.add_option("--fps", fps, "frame rate, for speeds")->check(CLI::PositiveNumber)->capture_default_str();
-    app.add_option("--streams", streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
-    app.add_option("--idle-timeout", idle_timeout_s, "fail if nothing arrives for this long once started (s, 0 = wait forever)");
+    app.add_option("--out", o.out_dir, "output folder (one sub-folder per stream when --streams > 1)")->required();
+    app.add_option("--gsd", o.gsd_m, "ground sampling distance, m/px: adds metric columns")->check(CLI::PositiveNumber);
+    app.add_option("--fps", o.fps, "frame rate, for speeds")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--streams", o.streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--idle-timeout", o.idle_timeout_s, "fail if nothing arrives for this long once started (s, 0 = wait forever)");
+    app.add_flag("--downlink", o.downlink,
+                 "read the compact uavmot/downlink/* topics of an air -> ground link (no features.csv, clusters.txt)");
     dds::add_node_options(app, node);
     return [&]() -> int {
       dds::finalize(node, "sink");
       install_shutdown_handler();
       dds::Participant participant(node.dds);
-      auto motion = participant.make_reader<msg::MotionEstimatePubSubType>(dds::kMotionTopic, dds::TopicClass::Chain);
-      auto segmentation = participant.make_reader<msg::SegmentationPubSubType>(dds::kSegmentationTopic, dds::TopicClass::Chain);
-      auto tracks = participant.make_reader<msg::TrackListPubSubType>(dds::kTracksTopic, dds::TopicClass::Chain);
-      dds::HealthReporter health(participant, "sink", "*");
-      dds::RejectLog rejects;
-      std::map<std::string, StreamFiles> files;
-      const auto start = std::chrono::steady_clock::now();
-      auto last_sample = start;
-      bool started = false;
-
-      auto files_for = [&](const std::string& stream) -> StreamFiles& {
-        auto [it, fresh] = files.try_emplace(stream);
-        if (fresh) {
-          ResultFilesOptions o;
-          o.directory = streams > 1 ? (std::filesystem::path(out_dir) / stream).string() : out_dir;
-          o.fps = fps;
-          o.gsd_m = gsd_m;
-          it->second.writer = std::make_unique<ResultFilesWriter>(o);
-          spdlog::info("stream '{}' -> {}", stream, o.directory);
-        }
-        return it->second;
-      };
-      auto finished = [&]() {
-        int done = 0;
-        for (const auto& [id, f] : files) done += f.done() ? 1 : 0;
-        return done >= streams;
-      };
-      // Each topic comes from one writer, in frame order: write each as it arrives.
-      auto drain = [&](auto& reader, auto write, auto mark_end) {
-        typename std::remove_reference_t<decltype(*reader)>::Sample sample;
-        bool any = false;
-        while (reader->take(sample)) {
-          any = true;
-          StreamFiles& f = files_for(sample.stream_id().to_string());
-          if (sample.end_of_stream()) {
-            mark_end(f);
-            continue;
-          }
-          std::string why;
-          auto value = dds::from_msg(sample, why);
-          if (!value) {
-            health.invalid_sample();
-            rejects.log(reader->topic(), why);
-            continue;
-          }
-          write(f, *value);
-        }
-        return any;
-      };
-
-      while (!shutdown_requested() && !finished()) {
-        bool any = drain(motion, [&](StreamFiles& f, const MotionEstimate& m) { f.writer->write_motion(m); health.frame_in(); },
-                         [](StreamFiles& f) { f.motion_ended = true; });
-        any |= drain(segmentation, [](StreamFiles& f, const SegmentationResult& s) { f.writer->write_segmentation(s); },
-                     [](StreamFiles& f) { f.segmentation_ended = true; });
-        any |= drain(tracks, [&](StreamFiles& f, const TrackList& t) {
-                       f.writer->write_tracks(t);
-                       health.frame_out(t.frame_index, 0.0, dds::latency_ms_since(t.capture_time_ns));
-                     },
-                     [](StreamFiles& f) { f.tracks_ended = true; });
-        health.tick();
-        const auto now = std::chrono::steady_clock::now();
-        if (any) {
-          last_sample = now;
-          started = true;
-        } else {
-          tracks->wait_for_data(std::chrono::milliseconds(50));
-          if (started && idle_timeout_s > 0 && now - last_sample > std::chrono::duration<double>(idle_timeout_s)) {
-            spdlog::error("nothing arrived for {} s; closing the files with what was received", idle_timeout_s);
-            break;
-          }
-        }
+      if (o.downlink) {
+        return run_sink<msg::MotionSummaryPubSubType, msg::RegionListPubSubType, msg::CompactTrackListPubSubType>(
+            participant, o, dds::TopicClass::Downlink, dds::kDownlinkMotionTopic, dds::kDownlinkRegionsTopic, dds::kDownlinkTracksTopic);
       }
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      for (auto& [id, f] : files) {
-        RunSummary summary;
-        summary.input = "dds:" + id;
-        summary.wall_time_s = seconds;
-        const int64_t frames = f.writer->frames_written();
-        f.writer->close(summary);
-        spdlog::info("stream '{}': {} frames written", id, frames);
-      }
-      health.report(msg::ComponentState::FINISHED);
-      return finished() ? kExitOk : kExitFailure;
+      return run_sink<msg::MotionEstimatePubSubType, msg::SegmentationPubSubType, msg::TrackListPubSubType>(
+          participant, o, dds::TopicClass::Chain, dds::kMotionTopic, dds::kSegmentationTopic, dds::kTracksTopic);
     };
   });
 }

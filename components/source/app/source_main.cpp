@@ -57,6 +57,7 @@ int source_main(int argc, char** argv) {
       dds::Participant participant(node.dds);
       auto writer = participant.make_writer<msg::FramePubSubType>(dds::kFramesTopic, dds::TopicClass::Frames);
       dds::HealthReporter health(participant, "source", input.stream_id);
+      health.watch(*writer);
       const bool lossless = node.dds.mode == dds::DeliveryMode::Lossless;
       const bool paced = rate_hz > 0.0 || native_rate || !lossless;
       const auto period = std::chrono::nanoseconds(static_cast<int64_t>(1e9 / info.fps));
@@ -140,8 +141,8 @@ int source_main(int argc, char** argv) {
       }
       const int64_t skipped_late = dropped_late + ahead.skipped_undecoded();
       auto eos = dds::end_of_stream_frame(input.stream_id, std::max(frame.index, ahead.last_index()));
-      writer->write_reliably(eos, std::chrono::seconds(5));
-      writer->flush(std::chrono::seconds(5));
+      writer->write_reliably(eos, dds::end_of_stream_patience(node.dds.mode));
+      writer->flush(dds::end_of_stream_patience(node.dds.mode));
       health.report(exit_code == kExitOk ? msg::ComponentState::FINISHED : msg::ComponentState::FAILED);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       spdlog::info("published {} frames in {:.2f} s ({:.1f} fps){}{}", published, seconds, published / std::max(seconds, 1e-9),

@@ -52,6 +52,9 @@ status::HealthReport from_msg(const msg::ComponentHealth& h) {
   r.invalid_samples = h.invalid_samples();
   r.bytes_out = h.bytes_out();
   r.message = h.message().to_string();
+  for (const auto& t : h.topics()) {
+    r.topics.push_back({t.topic().to_string(), t.samples_out(), t.bytes_out(), t.samples_in(), t.bytes_in()});
+  }
   return r;
 }
 

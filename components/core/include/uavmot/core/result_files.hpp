@@ -28,6 +28,7 @@ struct ResultFilesOptions {
   double gsd_m = 0.0;     // metres per pixel; 0 = unknown (no metric columns)
   bool write_features = true;
   bool write_segmentation = true;
+  bool write_clusters = true;  // with write_segmentation; off where clusters are not known (the downlink)
 };
 
 struct RunSummary {

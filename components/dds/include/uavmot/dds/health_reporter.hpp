@@ -3,8 +3,11 @@
 // rate, processing time, latency, queue depth, drops and rejected samples.
 
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "healthPubSubTypes.h"
 #include "uavmot/dds/participant.hpp"
@@ -24,6 +27,23 @@ class HealthReporter {
   void set_queue_depth(uint32_t depth) { queue_depth_ = depth; }
   void set_bytes_out(uint64_t bytes) { bytes_out_ = bytes; }
 
+  // Reports what this writer wrote / this reader took, per topic, on every health report
+  // (`uavmot status` turns successive counts into bytes/s). The endpoint must outlive the reporter.
+  template <class PubSubType>
+  void watch(const TopicWriter<PubSubType>& writer) {
+    watched_.emplace_back(writer.topic(), [&writer](msg::TopicTraffic& t) {
+      t.samples_out(t.samples_out() + writer.samples_sent());
+      t.bytes_out(t.bytes_out() + writer.bytes_sent());
+    });
+  }
+  template <class PubSubType>
+  void watch(const TopicReader<PubSubType>& reader) {
+    watched_.emplace_back(reader.topic(), [&reader](msg::TopicTraffic& t) {
+      t.samples_in(t.samples_in() + reader.samples_taken());
+      t.bytes_in(t.bytes_in() + reader.bytes_taken());
+    });
+  }
+
   // Publishes when the period has passed since the last report.
   void tick();
   // Publishes now with the given state (e.g. FINISHED or FAILED at the end) and message.
@@ -41,6 +61,7 @@ class HealthReporter {
   msg::ComponentState state_ = msg::ComponentState::STARTING;
   uint64_t frames_in_ = 0, frames_out_ = 0, dropped_ = 0, invalid_ = 0, bytes_out_ = 0;
   uint32_t queue_depth_ = 0;
+  std::vector<std::pair<std::string, std::function<void(msg::TopicTraffic&)>>> watched_;
   int64_t last_frame_ = 0;
   // Sums since the last report, for means.
   uint64_t window_frames_ = 0;

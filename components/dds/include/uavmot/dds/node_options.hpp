@@ -16,7 +16,7 @@ struct NodeOptions {
   int wait_subscribers = 0;  // lossless: publish only while this many readers are matched
 };
 
-// Adds --domain, --qos-profiles, --transport, --mode, --wait-subscribers, --log-level.
+// Adds --domain, --qos-profiles, --transport, --discovery-server, --mode, --wait-subscribers, --log-level.
 // Call finalize() after parsing.
 void add_node_options(CLI::App& app, NodeOptions& options);
 void finalize(NodeOptions& options, const std::string& component);

@@ -29,6 +29,13 @@ bool publish(TopicWriter<PubSubType>& writer, typename PubSubType::type& sample,
   return mode == DeliveryMode::Lossless ? writer.write_reliably(sample) : writer.write(sample);
 }
 
+// How long an end of stream (and the flush after it) may wait for the readers: in lossless mode as
+// long as any sample (a stalled link or a slow reader must not cost the end of stream), in live
+// mode briefly.
+inline std::chrono::seconds end_of_stream_patience(DeliveryMode mode) {
+  return mode == DeliveryMode::Lossless ? std::chrono::seconds(60) : std::chrono::seconds(10);
+}
+
 // Which streams have ended; a node exits when the expected number has.
 class StreamEnds {
  public:

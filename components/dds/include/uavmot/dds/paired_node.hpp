@@ -43,6 +43,9 @@ class PairedNode {
         ends_(spec_.streams),
         process_(std::move(process)) {
     if (mode_ == DeliveryMode::Lossless) writer_->set_required_readers(spec_.required_readers);
+    health_.watch(*reader_a_);
+    health_.watch(*reader_b_);
+    health_.watch(*writer_);
   }
 
   int run() {
@@ -58,7 +61,7 @@ class PairedNode {
         reader_a_->wait_for_data(std::chrono::milliseconds(1));
       }
     }
-    writer_->flush(std::chrono::seconds(10));
+    writer_->flush(end_of_stream_patience(mode_));
     health_.report(msg::ComponentState::FINISHED);
     return 0;
   }
@@ -125,7 +128,7 @@ class PairedNode {
       eos.stream_id(id);
       eos.frame_index(s.last_index);
       eos.end_of_stream(true);
-      writer_->write_reliably(eos, std::chrono::seconds(10));
+      writer_->write_reliably(eos, end_of_stream_patience(mode_));
       ends_.end(id);
     }
   }

@@ -24,6 +24,9 @@ struct DdsOptions {
   std::string profiles_file;                  // empty: $UAVMOT_QOS_PROFILES, then the installed/default file
   std::string participant_profile = "local";  // "local" (shared memory) or "udp" (between hosts)
   std::string participant_name = "uavmot";
+  // "IP:PORT" of a Fast DDS Discovery Server (server id 0) to be a client of, for links without
+  // multicast; empty: SIMPLE discovery (unless Fast DDS picks up $ROS_DISCOVERY_SERVER itself).
+  std::string discovery_server;
   DeliveryMode mode = DeliveryMode::Lossless;
 };
 

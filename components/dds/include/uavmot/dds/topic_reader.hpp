@@ -23,6 +23,7 @@ class TopicReader {
     while (reader_->take_next_sample(&sample, &info) == eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
       if (!info.valid_data) continue;
       ++samples_taken_;
+      bytes_taken_ += type_.getSerializedSizeProvider(&sample)();
       if (info_out) *info_out = info;
       return true;
     }
@@ -46,13 +47,16 @@ class TopicReader {
   }
 
   uint64_t samples_taken() const { return samples_taken_; }
+  uint64_t bytes_taken() const { return bytes_taken_; }  // serialized payload bytes of the samples taken
   const std::string& topic() const { return topic_; }
   eprosima::fastdds::dds::DataReader* native() const { return reader_; }
 
  private:
   eprosima::fastdds::dds::DataReader* reader_;
   std::string topic_;
+  PubSubType type_;
   uint64_t samples_taken_ = 0;
+  uint64_t bytes_taken_ = 0;
 };
 
 }  // namespace uavmot::dds

@@ -45,6 +45,7 @@ class TopicWriter {
         spdlog::error("{}: fewer than {} readers for {} ms", topic_, required_readers_, timeout.count());
         return false;
       }
+      spdlog::info("{}: {} reader(s) matched, going on", topic_, matched());
     }
     if (!flush(timeout)) return false;
     while (!writer_->write(&sample)) {

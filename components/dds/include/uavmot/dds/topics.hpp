@@ -11,13 +11,17 @@ inline constexpr const char* kSegmentationTopic = "uavmot/segmentation";
 inline constexpr const char* kTracksTopic = "uavmot/tracks";
 inline constexpr const char* kHealthTopic = "uavmot/health";
 inline constexpr const char* kTrackerStateTopic = "uavmot/tracker_state";
+// What crosses the air -> ground link (idl/downlink.idl, docs/deployment.md).
+inline constexpr const char* kDownlinkMotionTopic = "uavmot/downlink/motion";
+inline constexpr const char* kDownlinkRegionsTopic = "uavmot/downlink/regions";
+inline constexpr const char* kDownlinkTracksTopic = "uavmot/downlink/tracks";
 
 // lossless: nothing is dropped, slow readers hold back writers. live: newest sample wins.
 enum class DeliveryMode { Lossless, Live };
 DeliveryMode parse_delivery_mode(const std::string& name);  // "lossless" | "live"
 const char* to_string(DeliveryMode mode);
 
-enum class TopicClass { Frames, Chain, Health, State };
+enum class TopicClass { Frames, Chain, Downlink, Health, State };
 
 // Names of the endpoint profiles in bringup/qos/uavmot_qos.xml, e.g. "frames_lossless_writer".
 std::string writer_profile(TopicClass topic_class, DeliveryMode mode);

@@ -13,6 +13,18 @@
 
 namespace uavmot::status {
 
+// What a component wrote to / read from one topic since it started (TopicTraffic in idl/health.idl).
+struct TopicCounts {
+  std::string topic;
+  uint64_t samples_out = 0, bytes_out = 0, samples_in = 0, bytes_in = 0;
+};
+
+// Per-topic rates between two reports of the same process.
+struct TopicRate {
+  std::string topic;
+  double bytes_out_per_s = 0.0, bytes_in_per_s = 0.0, samples_out_per_s = 0.0, samples_in_per_s = 0.0;
+};
+
 // One ComponentHealth sample (idl/health.idl) as plain fields.
 struct HealthReport {
   std::string stream_id;
@@ -32,11 +44,13 @@ struct HealthReport {
   uint64_t invalid_samples = 0;
   uint64_t bytes_out = 0;
   std::string message;
+  std::vector<TopicCounts> topics;
 };
 
 struct HealthRow {
   HealthReport report;
   double bytes_per_s = 0.0;  // between the last two reports of the same process
+  std::vector<TopicRate> topics;  // likewise, per topic (one entry per topic in the report)
   double age_s = 0.0;        // since the last report was stamped
   bool stale = false;        // no report for longer than the stale limit
 };
@@ -56,14 +70,17 @@ class HealthTable {
   struct Entry {
     HealthReport report;
     double bytes_per_s = 0.0;
+    std::vector<TopicRate> topics;
   };
   double stale_after_s_;
   std::map<std::pair<std::string, std::string>, Entry> entries_;
 };
 
-// A fixed-width text table with a header line.
+// A fixed-width text table with a header line; under each row, one line per topic it wrote or
+// read with bytes/s and samples/s in and out.
 std::string format_table(const std::vector<HealthRow>& rows);
-// An array of objects, one per row, with the report's fields plus bytes_per_s, age_s and stale.
+// An array of objects, one per row, with the report's fields plus bytes_per_s, age_s and stale;
+// `topics` holds the per-topic counts with their rates (bytes_out_per_s, ...).
 nlohmann::json to_json(const std::vector<HealthRow>& rows);
 
 }  // namespace uavmot::status
