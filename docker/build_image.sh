@@ -10,6 +10,7 @@ here=$(cd "$(dirname "$0")" && pwd)
 build_dir=$(cd "${1:-$here/../build}" && pwd)
 export CONTAINERS_CONF=${CONTAINERS_CONF:-$here/containers.conf}
 name=${UAVMOT_IMAGE:-localhost/uavmot}
+engine=${UAVMOT_CONTAINER_ENGINE:-podman}  # docker works the same way (not tried here)
 
 sh "$here/build_base.sh" "$build_dir"
 context=$(mktemp -d /tmp/uavmot-image.XXXXXX)
@@ -18,5 +19,5 @@ mkdir "$context/bin"
 cp $(sh "$here/image_programs.sh" "$build_dir/bin") "$context/bin/"
 strip --strip-unneeded "$context"/bin/* 2>/dev/null || true
 cp -a "$here/../bringup" "$context/bringup"
-podman build -q -t "$name" --build-arg "BASE=${UAVMOT_BASE_IMAGE:-localhost/uavmot-base}" -f "$here/Dockerfile" "$context" >/dev/null
-echo "build_image: built $name ($(podman image inspect --format '{{.Size}}' "$name") bytes)"
+$engine build -q -t "$name" --build-arg "BASE=${UAVMOT_BASE_IMAGE:-localhost/uavmot-base}" -f "$here/Dockerfile" "$context" >/dev/null
+echo "build_image: built $name ($($engine image inspect --format '{{.Size}}' "$name") bytes)"

@@ -15,6 +15,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # integration tests: network namespaces, firewall rules, process tools
   iproute2 nftables procps psmisc python3
+  # containers: podman (runc: crun cannot set ulimits here), podman-compose, debootstrap for the base image
+  podman runc podman-compose debootstrap
 )
 
 # MCAP validation (tests/mcap_js): node and npm run the official MCAP reader. Debian's nodejs
