@@ -42,9 +42,11 @@ TEST(RogueWriter, MalformedSamplesAreCountedAndDroppedWhileTheChainGoesOn) {
     return a;
   };
   ChildProcess sink(args({binary("uavmot-sink"), "--out", out + "/results"}), out + "/sink.log");
-  ChildProcess tracking(args({binary("uavmot-tracking")}), out + "/tracking.log");
-  ChildProcess segmentation(args({binary("uavmot-segmentation")}), out + "/segmentation.log");
-  ChildProcess motion(args({binary("uavmot-motion")}), out + "/motion.log");
+  // Each writer waits for its readers (as bringup/local.yaml has it): on a busy host discovery can
+  // take longer than the rogue's writes, and an unmatched reader would miss the valid results.
+  ChildProcess tracking(args({binary("uavmot-tracking"), "--wait-subscribers", "1"}), out + "/tracking.log");
+  ChildProcess segmentation(args({binary("uavmot-segmentation"), "--wait-subscribers", "2"}), out + "/segmentation.log");
+  ChildProcess motion(args({binary("uavmot-motion"), "--wait-subscribers", "3"}), out + "/motion.log");
 
   dds::Participant rogue(rogue_options());
   auto frames = rogue.make_writer<msg::FramePubSubType>(dds::kFramesTopic, dds::TopicClass::Frames);

@@ -63,6 +63,11 @@ void HealthReporter::report(msg::ComponentState state, const std::string& messag
     if (sample.topics().size() < 16) sample.topics().push_back(t);
   }
   writer_->write(sample);
+  // The final state is what observers keep (status, tests): let it reach them before the process
+  // goes, as the reliable writer disappears with its participant.
+  if (state == msg::ComponentState::FINISHED || state == msg::ComponentState::FAILED) {
+    writer_->native()->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(1, 0));
+  }
   last_report_ = now;
   window_frames_ = 0;
   window_processing_ms_ = window_latency_ms_ = 0.0;
