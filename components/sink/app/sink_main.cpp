@@ -90,8 +90,6 @@ int run_sink(dds::Participant& participant, const SinkOptions& o, dds::TopicClas
         mark_end(f);
         continue;
       }
-      if (sample.frame_index() <= f.*last) continue;  // already written
-      f.*last = sample.frame_index();
       std::string why;
       auto value = dds::from_msg(sample, why);
       if (!value) {
@@ -99,6 +97,9 @@ int run_sink(dds::Participant& participant, const SinkOptions& o, dds::TopicClas
         rejects.log(reader->topic(), why);
         continue;
       }
+      // Deduplicate after validation: a malformed sample must not hide the valid one of its frame.
+      if (value->frame_index <= f.*last) continue;  // already written
+      f.*last = value->frame_index;
       write(f, *value);
     }
     return any;
