@@ -87,6 +87,57 @@ class YamlWriter : public detail::FieldVisitor {
   std::string indent_;
 };
 
+ScriptedVehicle load_scripted_vehicle(const ConfigNode& node) {
+  ScriptedVehicle v;
+  node.expect_only({"kind", "length_m", "width_m", "gray", "road", "direction", "lane", "start_m", "speed", "lane_changes"});
+  node.read_choice("kind", v.kind, {"car", "van", "truck"});
+  node.read("length_m", v.length_m, 1.0, 30.0);
+  node.read("width_m", v.width_m, 0.5, 4.0);
+  node.read("gray", v.gray, 0.0, 255.0);
+  node.read("road", v.road, 0, 20);
+  node.read("direction", v.direction, -1, 1);
+  if (v.direction == 0) node.fail("direction", "must be 1 (along the road) or -1 (against it)");
+  node.read("lane", v.lane, 0, 3);
+  node.read("start_m", v.start_m, -10000.0, 10000.0);
+  if (node.has("speed")) {
+    v.speed.clear();
+    for (const ConfigNode& key : node.children("speed")) {
+      key.expect_only({"at_s", "mps"});
+      SpeedKey k;
+      key.read("at_s", k.at_s, 0.0, 1e6);
+      key.read("mps", k.mps, 0.0, 100.0);
+      if (!v.speed.empty() && k.at_s <= v.speed.back().at_s) key.fail("at_s", "speed keys must be in increasing time");
+      v.speed.push_back(k);
+    }
+    if (v.speed.empty()) node.fail("speed", "needs at least one {at_s, mps} key");
+  }
+  if (node.has("lane_changes")) {
+    for (const ConfigNode& change : node.children("lane_changes")) {
+      change.expect_only({"at_s", "lane"});
+      LaneChange c;
+      change.read("at_s", c.at_s, 0.0, 1e6);
+      change.read("lane", c.lane, 0, 3);
+      if (!v.lane_changes.empty() && c.at_s < v.lane_changes.back().at_s + 3.5)
+        change.fail("at_s", "a lane change starts at least 3.5 s after the previous one (they take 3.5 s)");
+      v.lane_changes.push_back(c);
+    }
+  }
+  return v;
+}
+
+std::string scripted_to_yaml(const std::vector<ScriptedVehicle>& vehicles) {
+  if (vehicles.empty()) return {};
+  std::string out = "scripted:\n";
+  for (const ScriptedVehicle& v : vehicles) {
+    out += fmt::format("  - kind: \"{}\"\n    length_m: {}\n    width_m: {}\n    gray: {}\n", v.kind, v.length_m, v.width_m, v.gray);
+    out += fmt::format("    road: {}\n    direction: {}\n    lane: {}\n    start_m: {}\n    speed:\n", v.road, v.direction, v.lane, v.start_m);
+    for (const SpeedKey& k : v.speed) out += fmt::format("      - {{at_s: {}, mps: {}}}\n", k.at_s, k.mps);
+    if (!v.lane_changes.empty()) out += "    lane_changes:\n";
+    for (const LaneChange& c : v.lane_changes) out += fmt::format("      - {{at_s: {}, lane: {}}}\n", c.at_s, c.lane);
+  }
+  return out;
+}
+
 std::string join_names() {
   std::string names;
   for (const auto& n : preset_names()) names += (names.empty() ? "" : ", ") + n;
@@ -194,7 +245,11 @@ Scenario load_scenario(const ConfigNode& node) {
   }
   YamlReader reader(node);
   detail::visit_scenario(s, reader);
-  reader.finish({"preset"});
+  reader.finish({"preset", "scripted"});
+  if (node.has("scripted")) {
+    s.scripted.clear();
+    for (const ConfigNode& vehicle : node.children("scripted")) s.scripted.push_back(load_scripted_vehicle(vehicle));
+  }
   try {
     validate_scenario(s);
   } catch (const InputError& e) {
@@ -222,7 +277,7 @@ std::string scenario_to_yaml(const Scenario& scenario) {
   Scenario copy = scenario;
   YamlWriter writer;
   detail::visit_scenario(copy, writer);
-  return writer.text();
+  return writer.text() + scripted_to_yaml(scenario.scripted);
 }
 
 std::string default_texture_dir() {

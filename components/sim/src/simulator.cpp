@@ -80,6 +80,8 @@ class Simulator::Impl {
     const double dt = 1.0 / scenario_.fps;
     const int warmup_steps = static_cast<int>(std::lround(scenario_.traffic.warmup_s * scenario_.fps));
     for (int i = 0; i < warmup_steps; ++i) traffic_.step(dt);
+    const cv::Point2d image_centre((scenario_.camera.width - 1) / 2.0, (scenario_.camera.height - 1) / 2.0);
+    traffic_.add_scripted(apply_homography(camera_.image_from_world(0.0).inv(), image_centre));
     const double a = scenario_.traffic.shadow_angle_deg * kPi / 180.0;
     shadow_.offset_m = cv::Point2d(std::cos(a), std::sin(a)) * scenario_.traffic.shadow_length_m;
     shadow_.strength = scenario_.traffic.shadow_strength;

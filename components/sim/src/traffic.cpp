@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
+
+#include "uavmot/core/error.hpp"
 
 namespace uavmot::sim::detail {
 namespace {
@@ -13,6 +16,22 @@ constexpr double kMinGap = 2.0;        // m
 constexpr double kHeadway = 1.3;       // s
 constexpr double kLateralAccel = 2.0;  // m/s^2 allowed in bends
 constexpr double kLaneChangeDuration = 3.5;  // s
+
+// Piecewise linear through the keys, held before the first and after the last.
+double scripted_speed(const std::vector<SpeedKey>& keys, double t) {
+  if (t <= keys.front().at_s) return keys.front().mps;
+  for (size_t k = 1; k < keys.size(); ++k) {
+    if (t <= keys[k].at_s) {
+      const double f = (t - keys[k - 1].at_s) / (keys[k].at_s - keys[k - 1].at_s);
+      return keys[k - 1].mps + f * (keys[k].mps - keys[k - 1].mps);
+    }
+  }
+  return keys.back().mps;
+}
+
+VehicleKind kind_named(const std::string& name) {
+  return name == "truck" ? VehicleKind::Truck : name == "van" ? VehicleKind::Van : VehicleKind::Car;
+}
 
 double smoothstep(double x) {
   x = std::clamp(x, 0.0, 1.0);
@@ -116,6 +135,66 @@ void Traffic::add_parked(cv::Point2d view_centre, double view_radius) {
     v.heading_rad = spots[i].heading_rad + (uni(rng_) - 0.5) * 6.0 * kPi / 180.0;
     vehicles_.push_back(v);
   }
+}
+
+void Traffic::add_scripted(cv::Point2d image_centre_m) {
+  script_start_s_ = time_;
+  for (size_t i = 0; i < scenario_.scripted.size(); ++i) {
+    const ScriptedVehicle& script = scenario_.scripted[i];
+    const std::string name = "scripted[" + std::to_string(i) + "]";
+    if (script.road >= static_cast<int>(network_.roads.size()))
+      throw InputError(name + ".road " + std::to_string(script.road) + ": the road network has " +
+                       std::to_string(network_.roads.size()) + " roads (0 = main)");
+    const Road& road = network_.roads[script.road];
+    if (script.lane >= road.lanes_per_direction)
+      throw InputError(name + ".lane " + std::to_string(script.lane) + ": road " + std::to_string(script.road) + " has " +
+                       std::to_string(road.lanes_per_direction) + " lane(s) per direction");
+    // Arc length of the centreline point nearest the image centre.
+    size_t nearest = 0;
+    for (size_t p = 1; p < road.points.size(); ++p)
+      if (cv::norm(road.points[p] - image_centre_m) < cv::norm(road.points[nearest] - image_centre_m)) nearest = p;
+    const double centre_s = road.arc[nearest];
+    Vehicle v;
+    v.internal_id = next_id_++;
+    v.script = static_cast<int>(i);
+    v.kind = kind_named(script.kind);
+    v.length_m = script.length_m;
+    v.width_m = script.width_m;
+    v.look.body = script.gray;
+    v.look.roof = std::clamp(script.gray - 10.0, 0.0, 255.0);
+    v.look.glass = 30.0;
+    v.look.cargo = std::clamp(script.gray + 15.0, 0.0, 255.0);
+    v.road = script.road;
+    v.direction = script.direction;
+    v.lane = script.lane;
+    v.lateral_m = lane_offset(road, v.lane);
+    v.s_m = (script.direction > 0 ? centre_s : road.length() - centre_s) + script.start_m;
+    if (v.s_m < v.length_m / 2.0 || v.s_m > road.length() - v.length_m / 2.0)
+      throw InputError(name + ".start_m " + std::to_string(script.start_m) + " is off its road (it runs " +
+                       std::to_string(-(script.direction > 0 ? centre_s : road.length() - centre_s)) + " to " +
+                       std::to_string(script.direction > 0 ? road.length() - centre_s : centre_s) + " m from the image centre)");
+    v.speed_mps = v.desired_speed_mps = scripted_speed(script.speed, 0.0);
+    update_pose(v);
+    vehicles_.push_back(v);
+  }
+}
+
+void Traffic::advance_scripted(Vehicle& v, double dt) const {
+  const ScriptedVehicle& script = scenario_.scripted[static_cast<size_t>(v.script)];
+  const double t = time_ - script_start_s_;
+  // Lane changes begin at their time; the lateral motion is the traffic model's (in step()).
+  if (v.next_lane_change < script.lane_changes.size() && t >= script.lane_changes[v.next_lane_change].at_s) {
+    const int lane = std::min(script.lane_changes[v.next_lane_change].lane, network_.roads[v.road].lanes_per_direction - 1);
+    ++v.next_lane_change;
+    if (lane != v.lane) {
+      v.lane_change_from_m = v.lateral_m;
+      v.lane = lane;
+      v.lane_change_t = 0.0;
+    }
+  }
+  const double new_speed = scripted_speed(script.speed, t + dt);
+  v.s_m += 0.5 * (v.speed_mps + new_speed) * dt;
+  v.speed_mps = v.desired_speed_mps = new_speed;
 }
 
 void Traffic::schedule_arrivals(LaneState& lane) {
@@ -337,7 +416,7 @@ void Traffic::step(double dt) {
   std::vector<int> start_change(vehicles_.size(), -1);
   for (size_t i = 0; i < vehicles_.size(); ++i) {
     const Vehicle& v = vehicles_[i];
-    if (v.parked) continue;
+    if (v.parked || v.script >= 0) continue;
     const Road& road = network_.roads[v.road];
     double leader_speed = 0.0;
     double gap = gap_to_leader(i, v.lane, leader_speed);
@@ -384,9 +463,13 @@ void Traffic::step(double dt) {
     Vehicle& v = vehicles_[i];
     if (v.parked) continue;
     const cv::Point2d before = v.position_m;
-    const double new_speed = std::max(0.0, v.speed_mps + accel[i] * dt);
-    v.s_m += 0.5 * (v.speed_mps + new_speed) * dt;
-    v.speed_mps = new_speed;
+    if (v.script >= 0) {
+      advance_scripted(v, dt);
+    } else {
+      const double new_speed = std::max(0.0, v.speed_mps + accel[i] * dt);
+      v.s_m += 0.5 * (v.speed_mps + new_speed) * dt;
+      v.speed_mps = new_speed;
+    }
     const Road& road = network_.roads[v.road];
     if (v.lane_change_t >= 0.0) {
       v.lane_change_t = std::min(1.0, v.lane_change_t + dt / kLaneChangeDuration);

@@ -45,6 +45,9 @@ struct Vehicle {
   double lane_change_t = -1.0;  // progress 0..1 of a lane change; < 0 when not changing
   double s_m = 0.0;        // distance travelled along the lane
   double desired_speed_mps = 10.0;
+  // Scripted vehicles (Scenario::scripted): index of the script, -1 for the traffic model's own.
+  int script = -1;
+  size_t next_lane_change = 0;
 };
 
 class Traffic {
@@ -52,6 +55,10 @@ class Traffic {
   Traffic(const Scenario& scenario, const RoadNetwork& network, cv::Point2d view_centre_m, double view_radius_m,
           uint64_t seed);
 
+  // Puts the scenario's scripted vehicles on their roads; their script's clock starts now.
+  // `image_centre_m`: the ground point at the image centre of frame 1. Throws InputError for a
+  // script that names a road or lane the network does not have or starts off its road.
+  void add_scripted(cv::Point2d image_centre_m);
   void step(double dt_s);
   double time_s() const { return time_; }
   const std::vector<Vehicle>& vehicles() const { return vehicles_; }  // parked first, then moving by id
@@ -90,6 +97,7 @@ class Traffic {
   void update_pose(Vehicle& v) const;
   void add_parked(cv::Point2d view_centre_m, double view_radius_m);
   void populate();
+  void advance_scripted(Vehicle& v, double dt_s) const;
 
   const Scenario& scenario_;
   const RoadNetwork& network_;
@@ -101,6 +109,7 @@ class Traffic {
   std::vector<std::array<bool, 2>> junction_occupied_;          // per crossing: a vehicle of road_a / road_b inside
   int next_id_ = 1;
   double time_ = 0.0;
+  double script_start_s_ = 0.0;
 };
 
 }  // namespace uavmot::sim::detail

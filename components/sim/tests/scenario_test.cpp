@@ -64,6 +64,26 @@ TEST(Scenario, YamlRoundTripKeepsEveryValue) {
   }
 }
 
+TEST(Scenario, ScriptedVehiclesReadAndRoundTrip) {
+  const Scenario s = load_scenario(ConfigNode::load_string(
+      "preset: paper\nscripted:\n"
+      "  - {kind: van, gray: 90, lane: 1, direction: -1, start_m: -40.5, speed: [{at_s: 0, mps: 9}, {at_s: 3, mps: 0}],\n"
+      "     lane_changes: [{at_s: 1, lane: 0}]}\n"
+      "  - {start_m: 12}\n",
+      "s.yaml"));
+  ASSERT_EQ(s.scripted.size(), 2u);
+  EXPECT_EQ(s.scripted[0].kind, "van");
+  EXPECT_EQ(s.scripted[0].direction, -1);
+  EXPECT_DOUBLE_EQ(s.scripted[0].start_m, -40.5);
+  ASSERT_EQ(s.scripted[0].speed.size(), 2u);
+  EXPECT_DOUBLE_EQ(s.scripted[0].speed[1].at_s, 3.0);
+  ASSERT_EQ(s.scripted[0].lane_changes.size(), 1u);
+  EXPECT_EQ(s.scripted[1].kind, "car");  // defaults
+  EXPECT_DOUBLE_EQ(s.scripted[1].speed.at(0).mps, 10.0);
+  const std::string text = scenario_to_yaml(s);
+  EXPECT_EQ(scenario_to_yaml(load_scenario(ConfigNode::load_string(text, "back.yaml"))), text);
+}
+
 std::string load_error(const std::string& yaml) {
   try {
     load_scenario(ConfigNode::load_string(yaml, "bad.yaml"));
@@ -71,6 +91,15 @@ std::string load_error(const std::string& yaml) {
     return e.what();
   }
   return "";
+}
+
+TEST(Scenario, BadScriptsNameTheVehicleAndKey) {
+  EXPECT_NE(load_error("scripted:\n  - {kind: bus}\n").find("scripted[0].kind"), std::string::npos);
+  EXPECT_NE(load_error("scripted:\n  - {direction: 0}\n").find("direction"), std::string::npos);
+  EXPECT_NE(load_error("scripted:\n  - {speed: [{at_s: 2, mps: 1}, {at_s: 1, mps: 2}]}\n").find("increasing"), std::string::npos);
+  EXPECT_NE(load_error("scripted:\n  - {speed: [{at_s: 0, mps: nan}]}\n").find("mps"), std::string::npos);
+  EXPECT_NE(load_error("scripted:\n  - {sped: []}\n").find("sped"), std::string::npos);
+  EXPECT_NE(load_error("scripted: 3\n").find("list"), std::string::npos);
 }
 
 TEST(Scenario, BadYamlNamesTheFileAndKey) {

@@ -293,3 +293,76 @@ TEST(Simulator, VehiclesEnterAndLeaveTheView) {
 
 }  // namespace
 }  // namespace uavmot::sim
+
+namespace uavmot::sim {
+namespace {
+
+Scenario scripted_only(const std::vector<ScriptedVehicle>& vehicles, int frames) {
+  Scenario s = testing::clean_scenario("paper", frames);
+  s.traffic.flow_per_lane_vph = 0.0;
+  s.traffic.parked_vehicles = 0;
+  s.scripted = vehicles;
+  return s;
+}
+
+TEST(Simulator, ScriptedVehicleStartsAtTheImageCentreAndFollowsItsSpeedKeys) {
+  ScriptedVehicle car;
+  car.speed = {{0.0, 10.0}, {1.0, 10.0}, {1.5, 0.0}};
+  const Scenario s = scripted_only({car}, 50);
+  const auto frames = run(s, 3);
+  ASSERT_EQ(frames.front().objects.size(), 1u);
+  const ObjectTruth& first = frames.front().objects.front();
+  // On the main road's outer lane, next to the centreline point nearest the image centre.
+  const double lane_offset_px = 1.5 * s.roads.lane_width_m / s.camera.gsd_m;
+  EXPECT_LT(std::hypot(first.box.cx - (s.camera.width - 1) / 2.0, first.box.cy - (s.camera.height - 1) / 2.0), lane_offset_px);
+  for (const SimFrame& f : frames) {
+    const double t = static_cast<double>(f.index - 1) / s.fps;
+    const double expected = t <= 1.0 ? 10.0 : std::max(0.0, 10.0 - 20.0 * (t - 1.0));
+    ASSERT_EQ(f.objects.size(), 1u) << "frame " << f.index;
+    EXPECT_NEAR(f.objects.front().speed_mps, expected, 1e-9) << "frame " << f.index;
+    EXPECT_EQ(f.objects.front().moving, expected >= s.traffic.moving_threshold_mps) << "frame " << f.index;
+  }
+  // Standing still after 1.5 s: the box stays on the same ground point.
+  const ObjectTruth& a = frames[40].objects.front();
+  const ObjectTruth& b = frames[49].objects.front();
+  cv::Point2d carried(a.box.cx, a.box.cy);
+  for (size_t k = 41; k <= 49; ++k) carried = apply_homography(frames[k].homography_from_previous, carried);
+  EXPECT_NEAR(carried.x, b.box.cx, 1e-6);
+  EXPECT_NEAR(carried.y, b.box.cy, 1e-6);
+}
+
+TEST(Simulator, ScriptedLaneChangeMovesTheVehicleOneLaneOver) {
+  // Two cars at the same speed, 10 m apart in the outer lane; the one ahead moves one lane in.
+  ScriptedVehicle stays, changes;
+  stays.speed = changes.speed = {{0.0, 8.0}};
+  changes.start_m = 10.0;
+  changes.lane_changes = {{0.2, 1}};
+  const Scenario s = scripted_only({stays, changes}, 110);  // 4.4 s: the change takes 3.5 s
+  const auto frames = run(s, 5);
+  ASSERT_EQ(frames.back().objects.size(), 2u);
+  const ObjectTruth& a = frames.back().objects[0];
+  const ObjectTruth& b = frames.back().objects[1];
+  const double heading = a.box.angle_deg * 3.14159265358979323846 / 180.0;
+  const cv::Point2d d(b.box.cx - a.box.cx, b.box.cy - a.box.cy);
+  const double along = std::abs(std::cos(heading) * d.x + std::sin(heading) * d.y);
+  const double across = std::abs(-std::sin(heading) * d.x + std::cos(heading) * d.y);
+  EXPECT_NEAR(along, 10.0 / s.camera.gsd_m, 1.0);
+  EXPECT_NEAR(across, s.roads.lane_width_m / s.camera.gsd_m, 0.5);
+}
+
+TEST(Simulator, ScriptOnARoadTheNetworkLacksIsAnInputError) {
+  ScriptedVehicle car;
+  car.road = 9;
+  try {
+    run(scripted_only({car}, 2), 1);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("scripted[0].road 9"), std::string::npos) << e.what();
+  }
+  car.road = 0;
+  car.start_m = 5000.0;
+  EXPECT_THROW(run(scripted_only({car}, 2), 1), InputError);
+}
+
+}  // namespace
+}  // namespace uavmot::sim

@@ -87,6 +87,31 @@ struct SensorParams {
   bool write_video = true;            // video.mp4 beside the JPEG frames
 };
 
+// A vehicle that drives to a script instead of the traffic model, for scenario tests
+// (overtaking, convoys, re-entering the view, stop-and-go). Times are from frame 1; it ignores
+// other vehicles and signals (the traffic model's vehicles do react to it).
+struct SpeedKey {
+  double at_s = 0.0;
+  double mps = 0.0;
+};
+struct LaneChange {
+  double at_s = 0.0;  // the change starts here and takes 3.5 s, like the traffic model's
+  int lane = 0;
+};
+struct ScriptedVehicle {
+  std::string kind = "car";      // car | van | truck
+  double length_m = 4.6;
+  double width_m = 1.8;
+  double gray = 200.0;           // body luminance 0..255 (roof and glass follow from it)
+  int road = 0;                  // 0 = the main road
+  int direction = 1;             // +1 along the road, -1 against it
+  int lane = 0;                  // 0 = outermost
+  // Start along the lane, from the point nearest the image centre at frame 1; negative = behind it.
+  double start_m = 0.0;
+  std::vector<SpeedKey> speed{{0.0, 10.0}};  // linear between keys, held before the first and after the last
+  std::vector<LaneChange> lane_changes;
+};
+
 struct Scenario {
   std::string name = "paper";
   int frames = 250;
@@ -96,6 +121,7 @@ struct Scenario {
   RoadParams roads;
   TrafficParams traffic;
   SensorParams sensor;
+  std::vector<ScriptedVehicle> scripted;  // YAML: a `scripted:` list (docs/sim.md)
 };
 
 // Names of the built-in presets, in a fixed order.
