@@ -112,6 +112,7 @@ void ResultFilesWriter::close(RunSummary summary) {
   j["wall_time_s"] = summary.wall_time_s;
   j["fps"] = summary.wall_time_s > 0.0 ? static_cast<double>(summary.frames) / summary.wall_time_s : 0.0;
   j["gsd_m"] = options_.gsd_m;
+  if (!summary.stage_mean_ms.empty()) j["stage_mean_ms"] = summary.stage_mean_ms;
   std::ofstream out = open("summary.json");
   out << j.dump(2) << "\n";
 }

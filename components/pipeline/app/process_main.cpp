@@ -104,10 +104,16 @@ int process_main(int argc, char** argv) {
       RunSummary summary;
       summary.input = input.path;
       summary.wall_time_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const pipeline::StageTimes& times = chain.stage_times();
+      const double per_frame_ms = 1e3 / static_cast<double>(std::max<int64_t>(1, times.frames));
+      summary.stage_mean_ms = {{"motion", times.motion_s * per_frame_ms},
+                               {"segmentation", times.segmentation_s * per_frame_ms},
+                               {"tracking", times.tracking_s * per_frame_ms}};
       writer.close(summary);
       if (video) video->close();
-      spdlog::info("{} frames in {:.1f} s ({:.1f} fps) -> {}", done, summary.wall_time_s,
-                   done / std::max(summary.wall_time_s, 1e-9), out_dir);
+      spdlog::info("{} frames in {:.1f} s ({:.1f} fps) -> {}; per frame: motion {:.1f} ms, segmentation {:.1f} ms, tracking {:.1f} ms",
+                   done, summary.wall_time_s, done / std::max(summary.wall_time_s, 1e-9), out_dir,
+                   summary.stage_mean_ms["motion"], summary.stage_mean_ms["segmentation"], summary.stage_mean_ms["tracking"]);
       return exit_code;
     };
   });

@@ -1,5 +1,7 @@
 #include "uavmot/pipeline/chain.hpp"
 
+#include <chrono>
+
 #include "uavmot/motion/motion_estimator.hpp"
 #include "uavmot/segmentation/segmenter.hpp"
 #include "uavmot/tracking/tracker.hpp"
@@ -30,11 +32,20 @@ Chain::Chain(const ChainOptions& options) : layers_(std::make_unique<Layers>(opt
 Chain::~Chain() = default;
 
 ChainOutput Chain::process(const Frame& frame) {
+  using Clock = std::chrono::steady_clock;
+  auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
   ChainOutput out;
+  auto start = Clock::now();
   out.motion = layers_->motion.process(frame);
+  times_.motion_s += seconds_since(start);
+  start = Clock::now();
   out.segmentation = layers_->segmenter.process(frame, out.motion);
+  times_.segmentation_s += seconds_since(start);
+  start = Clock::now();
   layers_->tracker.set_image_size(out.motion.image_width, out.motion.image_height);
   out.tracks = layers_->tracker.process(out.motion, out.segmentation);
+  times_.tracking_s += seconds_since(start);
+  ++times_.frames;
   return out;
 }
 

@@ -37,6 +37,7 @@ struct RunSummary {
   uint64_t tracks_confirmed = 0;  // distinct confirmed track ids
   double wall_time_s = 0.0;
   std::string input;
+  std::map<std::string, double> stage_mean_ms;  // per layer, when known (uavmot process)
 };
 
 class ResultFilesWriter {

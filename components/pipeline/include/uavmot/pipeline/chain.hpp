@@ -32,6 +32,12 @@ struct ChainOutput {
   TrackList tracks;
 };
 
+// Wall time spent in each layer, summed over the frames processed (for summary.json and logs).
+struct StageTimes {
+  int64_t frames = 0;
+  double motion_s = 0.0, segmentation_s = 0.0, tracking_s = 0.0;
+};
+
 class Chain {
  public:
   explicit Chain(const ChainOptions& options);
@@ -40,10 +46,12 @@ class Chain {
   Chain& operator=(const Chain&) = delete;
 
   ChainOutput process(const Frame& frame);
+  const StageTimes& stage_times() const { return times_; }
 
  private:
   struct Layers;
   std::unique_ptr<Layers> layers_;
+  StageTimes times_;
 };
 
 }  // namespace uavmot::pipeline
