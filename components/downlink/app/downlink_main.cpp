@@ -5,16 +5,22 @@
 //   uavmot/segmentation -> uavmot/downlink/regions   regions in float32, no clusters
 //   uavmot/tracks       -> uavmot/downlink/tracks    boxes and velocities in float32
 //   uavmot/health       -> uavmot/health             the air components' reports, stream "*" -> --stream-id
+//   uavmot/frames       -> uavmot/downlink/preview   optional: JPEG, --preview-rate Hz, --preview-width px,
+//                                                    at most --preview-kbps (a flow controller)
 // End of stream is passed on per topic; it exits when every stream ended on all three.
+// The preview is best effort and newest-only: when the link is short of bandwidth it is the
+// preview that loses images, never the results.
 
 #include <cstdlib>
 #include <map>
 #include <memory>
 #include <set>
 
+#include <opencv2/imgproc.hpp>
 #include <spdlog/spdlog.h>
 
 #include "downlinkPubSubTypes.h"
+#include "framePubSubTypes.h"
 #include "healthPubSubTypes.h"
 #include "motionPubSubTypes.h"
 #include "segmentationPubSubTypes.h"
@@ -24,6 +30,7 @@
 #include "uavmot/core/shutdown.hpp"
 #include "uavmot/dds/chain_convert.hpp"
 #include "uavmot/dds/downlink_convert.hpp"
+#include "uavmot/dds/frame_convert.hpp"
 #include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/dds/node_support.hpp"
@@ -99,11 +106,62 @@ class Relay {
   int matched_ = 0;
 };
 
+struct PreviewOptions {
+  double rate_hz = 0.0;  // 0: no preview
+  int width = 320;       // px; the height keeps the aspect ratio
+  int quality = 75;      // JPEG
+  double kbps = 500.0;   // flow controller limit; 0: none
+};
+
+// Every 1/rate s, the newest frame as a small JPEG on the link.
+class Preview {
+ public:
+  static constexpr const char* kFlow = "uavmot_preview";
+
+  Preview(dds::Participant& air, dds::Participant& link, const PreviewOptions& o)
+      : options_(o),
+        frames_(air.make_reader<msg::FramePubSubType>(dds::kFramesTopic, dds::TopicClass::Preview)),
+        writer_(link.make_writer<msg::FramePubSubType>(dds::kDownlinkPreviewTopic, dds::TopicClass::Preview,
+                                                       o.kbps > 0 ? kFlow : "")) {}
+
+  void pump(dds::HealthReporter& health) {
+    msg::Frame sample;
+    while (frames_->take(sample)) {
+      if (sample.end_of_stream()) continue;
+      const auto now = std::chrono::steady_clock::now();
+      if (now < next_) continue;
+      next_ = now + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(1.0 / options_.rate_hz));
+      std::string why;
+      auto frame = dds::from_msg(sample, why);
+      if (!frame) {
+        health.invalid_sample();
+        continue;
+      }
+      if (frame->image.cols > options_.width) {
+        const int height = std::max(1, frame->image.rows * options_.width / frame->image.cols);
+        cv::resize(frame->image, frame->image, cv::Size(options_.width, height), 0, 0, cv::INTER_AREA);
+      }
+      auto jpeg = dds::to_jpeg_msg(*frame, options_.quality);
+      writer_->write(jpeg);
+    }
+  }
+
+  dds::TopicReader<msg::FramePubSubType>& frames() { return *frames_; }
+  dds::TopicWriter<msg::FramePubSubType>& writer() { return *writer_; }
+
+ private:
+  PreviewOptions options_;
+  std::unique_ptr<dds::TopicReader<msg::FramePubSubType>> frames_;
+  std::unique_ptr<dds::TopicWriter<msg::FramePubSubType>> writer_;
+  std::chrono::steady_clock::time_point next_{};
+};
+
 int downlink_main(int argc, char** argv) {
   dds::NodeOptions node;  // the link: --domain, --transport (udp), --mode, --wait-subscribers (ground readers)
   int air_domain = 1;
   std::string air_transport = "shm", stream_id = "*";
   int streams = 1;
+  PreviewOptions preview_options;
   return run_app(argc, argv, "downlink", "relay the chain's results to the ground in compact form (air -> link)", [&](CLI::App& app) {
     app.add_option("--air-domain", air_domain, "DDS domain of the UAV's own processes")->check(CLI::Range(0, 232))->capture_default_str();
     app.add_option("--air-transport", air_transport, "participant profile on the UAV's side (shm: never on the link)")
@@ -111,6 +169,13 @@ int downlink_main(int argc, char** argv) {
     app.add_option("--stream-id", stream_id, "this UAV's stream: health reports of nodes serving every stream (\"*\") get it")
         ->capture_default_str();
     app.add_option("--streams", streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--preview-rate", preview_options.rate_hz, "JPEG previews of the frames per second (0: none)")
+        ->check(CLI::NonNegativeNumber)->capture_default_str();
+    app.add_option("--preview-width", preview_options.width, "preview width, px (height keeps the aspect ratio)")
+        ->check(CLI::Range(16, 8192))->capture_default_str();
+    app.add_option("--preview-quality", preview_options.quality, "preview JPEG quality")->check(CLI::Range(1, 100))->capture_default_str();
+    app.add_option("--preview-kbps", preview_options.kbps, "the preview's share of the link, kbit/s (a flow controller; 0: unlimited)")
+        ->check(CLI::NonNegativeNumber)->capture_default_str();
     node.dds.participant_profile = "udp";
     dds::add_node_options(app, node);
     return [&]() -> int {
@@ -131,6 +196,9 @@ int downlink_main(int argc, char** argv) {
       air_options.domain_id = air_domain;
       air_options.participant_profile = air_transport;
       air_options.participant_name = "downlink-air";
+      if (preview_options.rate_hz > 0 && preview_options.kbps > 0) {
+        node.dds.flow_limits.push_back({Preview::kFlow, static_cast<uint64_t>(preview_options.kbps * 1000.0)});
+      }
       dds::Participant air(air_options);
       dds::Participant link(node.dds);
 
@@ -152,6 +220,14 @@ int downlink_main(int argc, char** argv) {
       health.watch(regions.writer());
       health.watch(tracks.writer());
       health.watch(*link_health);
+      std::unique_ptr<Preview> preview;
+      if (preview_options.rate_hz > 0) {
+        preview = std::make_unique<Preview>(air, link, preview_options);
+        health.watch(preview->frames());
+        health.watch(preview->writer());
+        spdlog::info("preview: {} Hz, {} px wide, at most {} kbit/s", preview_options.rate_hz, preview_options.width,
+                     preview_options.kbps);
+      }
       dds::RejectLog rejects;
       std::map<std::string, int> topics_ended;  // per stream: how many of the three topics ended
       int streams_ended = 0;
@@ -175,6 +251,7 @@ int downlink_main(int argc, char** argv) {
           if (report.stream_id().to_string() == "*") report.stream_id(stream_id);
           link_health->write(report);
         }
+        if (preview) preview->pump(health);
         motion.log_link_changes();
         regions.log_link_changes();
         tracks.log_link_changes();
@@ -194,6 +271,7 @@ int downlink_main(int argc, char** argv) {
       sent(regions.writer());
       sent(tracks.writer());
       sent(*link_health);
+      if (preview) sent(preview->writer());
       health.report(msg::ComponentState::FINISHED);
       return streams_ended >= streams ? kExitOk : kExitFailure;
     };

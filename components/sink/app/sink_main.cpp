@@ -2,20 +2,25 @@
 // `uavmot process` (tracks.txt, tracks_obb.csv, homographies.txt, features.csv, clusters.txt,
 // regions.txt, summary.json) through the same writer, so lossless runs are byte-identical.
 // With --downlink it reads the compact topics that cross an air -> ground link instead
-// (uavmot/downlink/*: no features or clusters, float32 boxes; docs/deployment.md).
+// (uavmot/downlink/*: no features or clusters, float32 boxes; docs/deployment.md), and with
+// --preview-dir it also saves the link's JPEG previews (uavmot/downlink/preview) there.
 // With several streams, each gets a folder of its own under --out.
 
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "downlinkPubSubTypes.h"
+#include "framePubSubTypes.h"
 #include "motionPubSubTypes.h"
 #include "segmentationPubSubTypes.h"
 #include "tracksPubSubTypes.h"
 #include "uavmot/core/app.hpp"
+#include "uavmot/core/error.hpp"
 #include "uavmot/core/result_files.hpp"
 #include "uavmot/core/shutdown.hpp"
 #include "uavmot/dds/chain_convert.hpp"
@@ -32,13 +37,43 @@ struct SinkOptions {
   double gsd_m = 0.0, fps = 25.0, idle_timeout_s = 0.0;
   int streams = 1;
   bool downlink = false;
+  std::string preview_dir;  // downlink: save the JPEG previews here
+};
+
+// Saves every JPEG preview that arrives as PREVIEW_DIR/STREAM_FRAME.jpg.
+class PreviewSaver {
+ public:
+  PreviewSaver(dds::Participant& participant, const std::string& dir)
+      : dir_(dir), reader_(participant.make_reader<msg::FramePubSubType>(dds::kDownlinkPreviewTopic, dds::TopicClass::Preview)) {
+    std::filesystem::create_directories(dir_);
+  }
+  bool pump() {
+    msg::Frame sample;
+    bool any = false;
+    while (reader_->take(sample)) {
+      any = true;
+      if (sample.encoding() != msg::Encoding::JPEG || sample.data().empty()) continue;
+      const std::string name = fmt::format("{}/{}_{:06d}.jpg", dir_, sample.stream_id().to_string(), sample.frame_index());
+      std::ofstream(name, std::ios::binary).write(reinterpret_cast<const char*>(sample.data().data()),
+                                                  static_cast<std::streamsize>(sample.data().size()));
+      ++images_;
+    }
+    return any;
+  }
+  dds::TopicReader<msg::FramePubSubType>& reader() { return *reader_; }
+  uint64_t images() const { return images_; }
+
+ private:
+  std::string dir_;
+  std::unique_ptr<dds::TopicReader<msg::FramePubSubType>> reader_;
+  uint64_t images_ = 0;
 };
 
 struct StreamFiles {
   std::unique_ptr<ResultFilesWriter> writer;
   bool motion_ended = false, segmentation_ended = false, tracks_ended = false;
-  // Last frame written per topic: a writer's history sent again after the link was lost and
-  // found (transient-local downlink topics) repeats frames already written.
+  // Last frame written per topic (downlink): a writer's history sent again after the link was
+  // lost and found (transient-local downlink topics) repeats frames already written.
   int64_t last_motion = 0, last_segmentation = 0, last_tracks = 0;
   bool done() const { return motion_ended && segmentation_ended && tracks_ended; }
 };
@@ -54,6 +89,11 @@ int run_sink(dds::Participant& participant, const SinkOptions& o, dds::TopicClas
   health.watch(*motion);
   health.watch(*segmentation);
   health.watch(*tracks);
+  std::unique_ptr<PreviewSaver> preview;
+  if (!o.preview_dir.empty()) {
+    preview = std::make_unique<PreviewSaver>(participant, o.preview_dir);
+    health.watch(preview->reader());
+  }
   dds::RejectLog rejects;
   std::map<std::string, StreamFiles> files;
   const auto start = std::chrono::steady_clock::now();
@@ -115,6 +155,7 @@ int run_sink(dds::Participant& participant, const SinkOptions& o, dds::TopicClas
                    health.frame_out(t.frame_index, 0.0, dds::latency_ms_since(t.capture_time_ns));
                  },
                  [](StreamFiles& f) { f.tracks_ended = true; }, &StreamFiles::last_tracks);
+    if (preview) preview->pump();
     health.tick();
     const auto now = std::chrono::steady_clock::now();
     if (any) {
@@ -137,6 +178,11 @@ int run_sink(dds::Participant& participant, const SinkOptions& o, dds::TopicClas
     f.writer->close(summary);
     spdlog::info("stream '{}': {} frames written", id, frames);
   }
+  auto received = [](const auto& r) { spdlog::info("{}: {} samples, {} bytes received", r.topic(), r.samples_taken(), r.bytes_taken()); };
+  received(*motion);
+  received(*segmentation);
+  received(*tracks);
+  if (preview) received(preview->reader());
   health.report(msg::ComponentState::FINISHED);
   return finished() ? kExitOk : kExitFailure;
 }
@@ -152,9 +198,11 @@ int sink_main(int argc, char** argv) {
     app.add_option("--idle-timeout", o.idle_timeout_s, "fail if nothing arrives for this long once started (s, 0 = wait forever)");
     app.add_flag("--downlink", o.downlink,
                  "read the compact uavmot/downlink/* topics of an air -> ground link (no features.csv, clusters.txt)");
+    app.add_option("--preview-dir", o.preview_dir, "with --downlink: save the link's JPEG previews here");
     dds::add_node_options(app, node);
     return [&]() -> int {
       dds::finalize(node, "sink");
+      if (!o.preview_dir.empty() && !o.downlink) throw InputError("--preview-dir needs --downlink");
       install_shutdown_handler();
       dds::Participant participant(node.dds);
       if (o.downlink) {
