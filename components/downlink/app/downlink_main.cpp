@@ -1,20 +1,22 @@
 // uavmot-downlink: the UAV's gateway to the ground. It is the only air process on the radio
 // link: it reads motion, segmentation and tracks on the UAV's own domain (shared memory, never on
-// the link) and publishes on the link's domain what the ground uses, once per frame:
-//   uavmot/motion       -> uavmot/downlink/motion    homography and quality, no features
-//   uavmot/segmentation -> uavmot/downlink/regions   regions in float32, no clusters
-//   uavmot/tracks       -> uavmot/downlink/tracks    boxes and velocities in float32
-//   uavmot/health       -> uavmot/health             the air components' reports, stream "*" -> --stream-id
-//   uavmot/frames       -> uavmot/downlink/preview   optional: JPEG, --preview-rate Hz, --preview-width px,
-//                                                    at most --preview-kbps (a flow controller)
-// End of stream is passed on per topic; it exits when every stream ended on all three.
+// the link) and publishes on the link's domain, once per frame, what the ground uses:
+//   uavmot/motion + uavmot/segmentation + uavmot/tracks -> uavmot/downlink/results
+//       homography and quality, regions, tracks (float32 boxes); no features, clusters,
+//       uncertainties or feature ids (idl/downlink.idl)
+//   uavmot/health -> uavmot/health      the air components' reports, stream "*" -> --stream-id
+//   uavmot/frames -> uavmot/downlink/preview   optional: JPEG, --preview-rate Hz, --preview-width px,
+//                                              at most --preview-kbps (a flow controller)
+// A frame's results go once its motion, segmentation and tracks are all there; a frame the chain
+// skipped a part of (live mode) goes with what it has when a later frame is complete. The end of stream goes
+// after all three inputs ended; it exits when every stream ended.
 // The preview is best effort and newest-only: when the link is short of bandwidth it is the
 // preview that loses images, never the results.
 
 #include <cstdlib>
+#include <limits>
 #include <map>
 #include <memory>
-#include <set>
 
 #include <opencv2/imgproc.hpp>
 #include <spdlog/spdlog.h>
@@ -38,49 +40,47 @@
 namespace uavmot {
 namespace {
 
-// One chain topic on the air side -> its compact variant on the link.
-template <class InPub, class OutPub>
-class Relay {
+// Frames whose tracks have not come yet, per stream. Bounded: a tracker that stopped publishing
+// must not make the downlink hoard (the oldest frame goes without tracks).
+constexpr size_t kMaxPendingFrames = 64;
+
+struct StreamState {
+  std::map<int64_t, dds::FrameParts> pending;
+  int ended_inputs = 0;  // of motion, segmentation, tracks
+  int64_t last_index = 0;
+};
+
+class Results {
  public:
-  Relay(dds::Participant& air, dds::Participant& link, const char* in_topic, const char* out_topic, int required_readers)
+  Results(dds::Participant& air, dds::Participant& link, int required_readers, dds::HealthReporter& health)
       : mode_(link.options().mode),
-        reader_(air.make_reader<InPub>(in_topic, dds::TopicClass::Chain)),
-        writer_(link.make_writer<OutPub>(out_topic, dds::TopicClass::Downlink)) {
+        motion_(air.make_reader<msg::MotionEstimatePubSubType>(dds::kMotionTopic, dds::TopicClass::Chain)),
+        segmentation_(air.make_reader<msg::SegmentationPubSubType>(dds::kSegmentationTopic, dds::TopicClass::Chain)),
+        tracks_(air.make_reader<msg::TrackListPubSubType>(dds::kTracksTopic, dds::TopicClass::Chain)),
+        writer_(link.make_writer<msg::FrameResultsPubSubType>(dds::kDownlinkResultsTopic, dds::TopicClass::Downlink)),
+        health_(health) {
     if (mode_ == dds::DeliveryMode::Lossless) writer_->set_required_readers(required_readers);
+    health_.watch(*motion_);
+    health_.watch(*segmentation_);
+    health_.watch(*tracks_);
+    health_.watch(*writer_);
   }
 
-  // Publishes every sample waiting; calls `ended(stream)` at each end of stream. True if any was taken.
-  template <class OnFrame, class OnEnd>
-  bool pump(dds::HealthReporter& health, dds::RejectLog& rejects, OnFrame on_frame, OnEnd ended) {
-    typename InPub::type sample;
-    bool any = false;
-    while (reader_->take(sample)) {
-      any = true;
-      const std::string stream = sample.stream_id().to_string();
-      if (sample.end_of_stream()) {
-        typename OutPub::type eos;
-        eos.stream_id(stream);
-        eos.frame_index(sample.frame_index());
-        eos.end_of_stream(true);
-        writer_->write_reliably(eos, dds::end_of_stream_patience(mode_));
-        if (ended_.insert(stream).second) ended(stream);
-        continue;
-      }
-      std::string why;
-      auto value = dds::from_msg(sample, why);
-      if (!value) {
-        health.invalid_sample();
-        rejects.log(reader_->topic(), why);
-        continue;
-      }
-      auto out = dds::to_downlink_msg(*value);
-      if (!dds::publish(*writer_, out, mode_)) health.dropped();
-      on_frame(*value);
-    }
+  // Takes what waits on the three inputs and publishes every frame that is complete. True if any was taken.
+  bool pump() {
+    bool any = take(*motion_, &dds::FrameParts::motion);
+    any |= take(*segmentation_, &dds::FrameParts::segmentation);
+    any |= take(*tracks_, &dds::FrameParts::tracks);
+    health_.set_queue_depth(static_cast<uint32_t>(motion_->unread() + segmentation_->unread() + tracks_->unread()));
     return any;
   }
 
-  // Logs when the link's readers come and go (the link dropped, the ground restarted).
+  int streams_ended() const { return streams_ended_; }
+  uint64_t dropped_tracks() const { return dropped_tracks_; }
+  dds::TopicWriter<msg::FrameResultsPubSubType>& writer() { return *writer_; }
+  dds::TopicReader<msg::TrackListPubSubType>& tracks() { return *tracks_; }
+
+  // Logs when the link's reader comes and goes (the link dropped, the ground restarted).
   void log_link_changes() {
     const int matched = writer_->matched();
     if (matched == matched_) return;
@@ -88,21 +88,74 @@ class Relay {
     matched_ = matched;
   }
 
-  // Every sample before the end of stream was acknowledged before it was written (lossless); only
-  // the end of stream itself may be unacknowledged when the ground's reader exits right after
-  // reading it, which the writer learns only when that reader's participant is gone. So: a short
-  // wait, and no failure.
-  void flush() {
-    if (!writer_->flush(std::chrono::seconds(5))) spdlog::warn("{}: end of stream not acknowledged (the reader left?)", writer_->topic());
-  }
-  dds::TopicReader<InPub>& reader() { return *reader_; }
-  dds::TopicWriter<OutPub>& writer() { return *writer_; }
-
  private:
+  template <class Reader, class Part>
+  bool take(Reader& reader, std::optional<Part> dds::FrameParts::*part) {
+    typename Reader::Sample sample;
+    bool any = false;
+    while (reader.take(sample)) {
+      any = true;
+      const std::string id = sample.stream_id().to_string();
+      StreamState& s = streams_[id];
+      if (sample.end_of_stream()) {
+        s.last_index = std::max(s.last_index, sample.frame_index());
+        if (++s.ended_inputs == 3) end(id, s);
+        continue;
+      }
+      std::string why;
+      auto value = dds::from_msg(sample, why);
+      if (!value) {
+        health_.invalid_sample();
+        rejects_.log(reader.topic(), why);
+        continue;
+      }
+      const int64_t index = sample.frame_index();
+      s.last_index = std::max(s.last_index, index);
+      dds::FrameParts& frame = s.pending[index];
+      frame.*part = std::move(*value);
+      // Each input arrives in frame order, so once frame k is complete no earlier frame will get
+      // another part: everything up to k can go.
+      if (frame.motion && frame.segmentation && frame.tracks) {
+        publish_up_to(id, s, index);
+      } else if (s.pending.size() > kMaxPendingFrames) {
+        publish_up_to(id, s, s.pending.begin()->first);
+      }
+    }
+    return any;
+  }
+
+  // Publishes the pending frames up to `index`, in frame order.
+  void publish_up_to(const std::string& id, StreamState& s, int64_t index) {
+    while (!s.pending.empty() && s.pending.begin()->first <= index) {
+      auto node = s.pending.extract(s.pending.begin());
+      auto sample = dds::to_downlink_msg(id, node.key(), node.mapped(), &dropped_tracks_);
+      if (!dds::publish(*writer_, sample, mode_)) health_.dropped();
+      if (node.mapped().motion) health_.frame_in();
+      health_.frame_out(node.key(), 0.0, dds::latency_ms_since(sample.capture_time_ns()));
+    }
+  }
+
+  void end(const std::string& id, StreamState& s) {
+    publish_up_to(id, s, std::numeric_limits<int64_t>::max());
+    msg::FrameResults eos;
+    eos.stream_id(id);
+    eos.frame_index(std::max<int64_t>(s.last_index, 1));
+    eos.end_of_stream(true);
+    writer_->write_reliably(eos, dds::end_of_stream_patience(mode_));
+    ++streams_ended_;
+    spdlog::info("stream '{}' ended", id);
+  }
+
   dds::DeliveryMode mode_;
-  std::unique_ptr<dds::TopicReader<InPub>> reader_;
-  std::unique_ptr<dds::TopicWriter<OutPub>> writer_;
-  std::set<std::string> ended_;
+  std::unique_ptr<dds::TopicReader<msg::MotionEstimatePubSubType>> motion_;
+  std::unique_ptr<dds::TopicReader<msg::SegmentationPubSubType>> segmentation_;
+  std::unique_ptr<dds::TopicReader<msg::TrackListPubSubType>> tracks_;
+  std::unique_ptr<dds::TopicWriter<msg::FrameResultsPubSubType>> writer_;
+  dds::HealthReporter& health_;
+  dds::RejectLog rejects_;
+  std::map<std::string, StreamState> streams_;
+  int streams_ended_ = 0;
+  uint64_t dropped_tracks_ = 0;
   int matched_ = 0;
 };
 
@@ -113,7 +166,10 @@ struct PreviewOptions {
   double kbps = 500.0;   // flow controller limit; 0: none
 };
 
-// Every 1/rate s, the newest frame as a small JPEG on the link.
+// Every 1/rate s, the newest frame as a small JPEG on the link, but never faster than its share
+// lets an image through: a newer image would replace the one the flow controller is still
+// sending (newest only), and none would ever arrive. Frames due while the previous image still
+// uses the share are skipped: the preview gives way; the flow controller is the hard cap.
 class Preview {
  public:
   static constexpr const char* kFlow = "uavmot_preview";
@@ -125,12 +181,14 @@ class Preview {
                                                        o.kbps > 0 ? kFlow : "")) {}
 
   void pump(dds::HealthReporter& health) {
+    using Clock = std::chrono::steady_clock;
     msg::Frame sample;
     while (frames_->take(sample)) {
-      if (sample.end_of_stream()) continue;
-      const auto now = std::chrono::steady_clock::now();
-      if (now < next_) continue;
-      next_ = now + std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(1.0 / options_.rate_hz));
+      const auto now = Clock::now();
+      if (sample.end_of_stream() || now < next_due_) continue;
+      next_due_ = now + seconds(1.0 / options_.rate_hz);
+      ++due_;
+      if (now < share_free_) continue;  // the last image still needs the share
       std::string why;
       auto frame = dds::from_msg(sample, why);
       if (!frame) {
@@ -142,18 +200,25 @@ class Preview {
         cv::resize(frame->image, frame->image, cv::Size(options_.width, height), 0, 0, cv::INTER_AREA);
       }
       auto jpeg = dds::to_jpeg_msg(*frame, options_.quality);
+      if (options_.kbps > 0) share_free_ = now + seconds(static_cast<double>(jpeg.data().size()) * 8.0 / (options_.kbps * 1000.0));
       writer_->write(jpeg);
     }
   }
 
+  uint64_t due() const { return due_; }
   dds::TopicReader<msg::FramePubSubType>& frames() { return *frames_; }
   dds::TopicWriter<msg::FramePubSubType>& writer() { return *writer_; }
 
  private:
+  static std::chrono::steady_clock::duration seconds(double s) {
+    return std::chrono::duration_cast<std::chrono::steady_clock::duration>(std::chrono::duration<double>(s));
+  }
+
   PreviewOptions options_;
   std::unique_ptr<dds::TopicReader<msg::FramePubSubType>> frames_;
   std::unique_ptr<dds::TopicWriter<msg::FramePubSubType>> writer_;
-  std::chrono::steady_clock::time_point next_{};
+  std::chrono::steady_clock::time_point next_due_{}, share_free_{};
+  uint64_t due_ = 0;
 };
 
 int downlink_main(int argc, char** argv) {
@@ -202,23 +267,11 @@ int downlink_main(int argc, char** argv) {
       dds::Participant air(air_options);
       dds::Participant link(node.dds);
 
-      const int readers = node.wait_subscribers;
-      Relay<msg::MotionEstimatePubSubType, msg::MotionSummaryPubSubType> motion(air, link, dds::kMotionTopic,
-                                                                                 dds::kDownlinkMotionTopic, readers);
-      Relay<msg::SegmentationPubSubType, msg::RegionListPubSubType> regions(air, link, dds::kSegmentationTopic,
-                                                                             dds::kDownlinkRegionsTopic, readers);
-      Relay<msg::TrackListPubSubType, msg::CompactTrackListPubSubType> tracks(air, link, dds::kTracksTopic,
-                                                                               dds::kDownlinkTracksTopic, readers);
+      dds::HealthReporter health(link, "downlink", stream_id);
+      Results results(air, link, node.wait_subscribers, health);
       auto air_health = air.make_reader<msg::ComponentHealthPubSubType>(dds::kHealthTopic, dds::TopicClass::Health);
       auto link_health = link.make_writer<msg::ComponentHealthPubSubType>(dds::kHealthTopic, dds::TopicClass::Health);
-      dds::HealthReporter health(link, "downlink", stream_id);
-      health.watch(motion.reader());
-      health.watch(regions.reader());
-      health.watch(tracks.reader());
       health.watch(*air_health);
-      health.watch(motion.writer());
-      health.watch(regions.writer());
-      health.watch(tracks.writer());
       health.watch(*link_health);
       std::unique_ptr<Preview> preview;
       if (preview_options.rate_hz > 0) {
@@ -228,52 +281,38 @@ int downlink_main(int argc, char** argv) {
         spdlog::info("preview: {} Hz, {} px wide, at most {} kbit/s", preview_options.rate_hz, preview_options.width,
                      preview_options.kbps);
       }
-      dds::RejectLog rejects;
-      std::map<std::string, int> topics_ended;  // per stream: how many of the three topics ended
-      int streams_ended = 0;
-      auto ended = [&](const std::string& stream) {
-        if (++topics_ended[stream] == 3) {
-          ++streams_ended;
-          spdlog::info("stream '{}' ended", stream);
-        }
-      };
       spdlog::info("domain {} ({}) -> domain {} ({}), {}, waiting for {} ground reader(s)", air_domain, air_transport,
-                   node.dds.domain_id, node.dds.participant_profile, node.mode, readers);
+                   node.dds.domain_id, node.dds.participant_profile, node.mode, node.wait_subscribers);
 
-      while (!shutdown_requested() && streams_ended < streams) {
-        bool any = motion.pump(health, rejects, [&](const MotionEstimate&) { health.frame_in(); }, ended);
-        any |= regions.pump(health, rejects, [](const SegmentationResult&) {}, ended);
-        any |= tracks.pump(health, rejects, [&](const TrackList& t) {
-          health.frame_out(t.frame_index, 0.0, dds::latency_ms_since(t.capture_time_ns));
-        }, ended);
+      while (!shutdown_requested() && results.streams_ended() < streams) {
+        const bool any = results.pump();
         msg::ComponentHealth report;
         while (air_health->take(report)) {
           if (report.stream_id().to_string() == "*") report.stream_id(stream_id);
           link_health->write(report);
         }
         if (preview) preview->pump(health);
-        motion.log_link_changes();
-        regions.log_link_changes();
-        tracks.log_link_changes();
-        health.set_queue_depth(static_cast<uint32_t>(motion.reader().unread() + regions.reader().unread() +
-                                                     tracks.reader().unread()));
-        health.set_bytes_out(motion.writer().bytes_sent() + regions.writer().bytes_sent() + tracks.writer().bytes_sent());
+        results.log_link_changes();
+        health.set_bytes_out(results.writer().bytes_sent());
         health.tick();
-        if (!any) tracks.reader().wait_for_data(std::chrono::milliseconds(50));
+        if (!any) results.tracks().wait_for_data(std::chrono::milliseconds(50));
       }
-      motion.flush();
-      regions.flush();
-      tracks.flush();
-      auto sent = [](const auto& w) {
-        spdlog::info("{}: {} samples, {} bytes", w.topic(), w.samples_sent(), w.bytes_sent());
-      };
-      sent(motion.writer());
-      sent(regions.writer());
-      sent(tracks.writer());
+      // Every frame before the end of stream was acknowledged before the next was written
+      // (lossless); only the end of stream itself may be unacknowledged when the ground's reader
+      // exits right after reading it, which the writer learns only when that reader's participant
+      // is gone. So: a short wait, and no failure.
+      if (!results.writer().flush(std::chrono::seconds(5))) spdlog::warn("end of stream not acknowledged (the reader left?)");
+      auto sent = [](const auto& w) { spdlog::info("{}: {} samples, {} bytes", w.topic(), w.samples_sent(), w.bytes_sent()); };
+      sent(results.writer());
       sent(*link_health);
-      if (preview) sent(preview->writer());
+      if (preview) {
+        sent(preview->writer());
+        spdlog::info("preview: {} of {} images due at {} Hz sent (the rest gave way to the {} kbit/s share)",
+                     preview->writer().samples_sent(), preview->due(), preview_options.rate_hz, preview_options.kbps);
+      }
+      if (results.dropped_tracks() > 0) spdlog::warn("{} tracks had ids beyond 32 bits and were not sent", results.dropped_tracks());
       health.report(msg::ComponentState::FINISHED);
-      return streams_ended >= streams ? kExitOk : kExitFailure;
+      return results.streams_ended() >= streams ? kExitOk : kExitFailure;
     };
   });
 }

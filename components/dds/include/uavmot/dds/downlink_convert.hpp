@@ -1,5 +1,5 @@
 #pragma once
-// Chain types <-> the compact downlink samples (idl/downlink.idl): what crosses the air -> ground
+// Chain types <-> the per-frame downlink sample (idl/downlink.idl): what crosses the air -> ground
 // link. Only what the ground uses travels: the homography (exact), regions and tracks as float32
 // boxes and velocities (1e-4 px at 1000 px, below the 1/1000 px the result files print), no
 // features, clusters, uncertainties or feature ids. Received samples are validated like the
@@ -13,14 +13,19 @@
 
 namespace uavmot::dds {
 
-msg::MotionSummary to_downlink_msg(const MotionEstimate& motion);
-msg::RegionList to_downlink_msg(const SegmentationResult& segmentation);
-msg::CompactTrackList to_downlink_msg(const TrackList& tracks);
+// One frame's results as the UAV's chain produced them; a part it skipped is absent.
+struct FrameParts {
+  std::optional<MotionEstimate> motion;
+  std::optional<SegmentationResult> segmentation;
+  std::optional<TrackList> tracks;
+};
+
+// Tracks whose id does not fit the compact id (32 bits) are left out and counted in `dropped_tracks`.
+msg::FrameResults to_downlink_msg(const std::string& stream_id, int64_t frame_index, const FrameParts& parts,
+                                  uint64_t* dropped_tracks = nullptr);
 
 // What the ground gets back: features, clusters, uncertainties and feature ids are empty/zero.
 // nullopt with `why` set when the sample is malformed.
-std::optional<MotionEstimate> from_msg(const msg::MotionSummary& sample, std::string& why);
-std::optional<SegmentationResult> from_msg(const msg::RegionList& sample, std::string& why);
-std::optional<TrackList> from_msg(const msg::CompactTrackList& sample, std::string& why);
+std::optional<FrameParts> from_msg(const msg::FrameResults& sample, std::string& why);
 
 }  // namespace uavmot::dds

@@ -11,10 +11,8 @@ inline constexpr const char* kSegmentationTopic = "uavmot/segmentation";
 inline constexpr const char* kTracksTopic = "uavmot/tracks";
 inline constexpr const char* kHealthTopic = "uavmot/health";
 inline constexpr const char* kTrackerStateTopic = "uavmot/tracker_state";
-// What crosses the air -> ground link (idl/downlink.idl, docs/deployment.md).
-inline constexpr const char* kDownlinkMotionTopic = "uavmot/downlink/motion";
-inline constexpr const char* kDownlinkRegionsTopic = "uavmot/downlink/regions";
-inline constexpr const char* kDownlinkTracksTopic = "uavmot/downlink/tracks";
+// What crosses the air -> ground link (idl/downlink.idl, docs/deployment.md): one sample per frame.
+inline constexpr const char* kDownlinkResultsTopic = "uavmot/downlink/results";
 // Optional JPEG preview of the frames (msg::Frame, encoding JPEG), paced by a flow controller.
 inline constexpr const char* kDownlinkPreviewTopic = "uavmot/downlink/preview";
 
