@@ -2,8 +2,8 @@
 // chain (bringup/air.yaml) in one or two "UAV" namespaces, the ground half (bringup/ground.yaml)
 // in another, real processes over real UDP. Needs root and `ip netns`; skipped otherwise.
 //
-// The downlink carries one compact sample per frame (float32 boxes, idl/downlink.idl), so the ground's files
-// equal `uavmot process`'s to within one unit of the last printed digit (homographies exactly).
+// The downlink carries one compact but exact sample per frame (idl/downlink.idl), so the ground's files
+// are byte-identical to `uavmot process`'s.
 
 #include <arpa/inet.h>
 #include <fcntl.h>
@@ -29,7 +29,6 @@
 #include <gtest/gtest.h>
 
 #include "child_process.hpp"
-#include "result_compare.hpp"
 
 namespace uavmot {
 namespace {
@@ -351,16 +350,11 @@ class AirGround : public ::testing::Test {
     return run;
   }
 
-  // The ground's results against `uavmot process` on the same sequence: homographies exactly,
-  // boxes to the last printed digit (float32 on the downlink).
+  // The ground's results against `uavmot process` on the same sequence: the same bytes.
   static void expect_same_results(const std::string& out, const std::string& process_dir = root_ + "/process_paper") {
-    const std::string expected = read_file(process_dir + "/tracks.txt");
-    ASSERT_FALSE(expected.empty()) << "the in-process run found no tracks: nothing would be compared";
-    EXPECT_EQ(read_file(out + "/homographies.txt"), read_file(process_dir + "/homographies.txt"));
-    for (const char* file : {"tracks.txt", "tracks_obb.csv", "regions.txt"}) {
-      const auto c = testing::compare_to_last_digit(out + "/" + file, process_dir + "/" + file);
-      EXPECT_TRUE(c.equal()) << file << ": " << c.difference;
-      std::printf("[airground] %s: %d numbers differ from uavmot process in their last digit\n", file, c.numbers_differing);
+    ASSERT_FALSE(read_file(process_dir + "/tracks.txt").empty()) << "the in-process run found no tracks: nothing would be compared";
+    for (const char* file : {"homographies.txt", "tracks.txt", "tracks_obb.csv", "regions.txt"}) {
+      EXPECT_EQ(read_file(out + "/" + file), read_file(process_dir + "/" + file)) << out << "/" << file;
     }
   }
 

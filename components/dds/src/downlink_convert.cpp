@@ -3,22 +3,50 @@
 #include <cmath>
 #include <limits>
 
+#include "uavmot/core/error.hpp"
+#include "uavmot/core/result_files.hpp"
+
 #include "uavmot/dds/chain_convert.hpp"
 
 namespace uavmot::dds {
 namespace {
 
-msg::CompactBox box_to_msg(const OrientedBox& b) {
-  msg::CompactBox m;
-  m.cx(static_cast<float>(b.cx));
-  m.cy(static_cast<float>(b.cy));
-  m.width(static_cast<float>(b.width));
-  m.length(static_cast<float>(b.length));
-  m.angle_deg(static_cast<float>(b.angle_deg));
+msg::OrientedBox box_to_msg(const OrientedBox& b) {
+  msg::OrientedBox m;
+  m.cx(b.cx);
+  m.cy(b.cy);
+  m.width(b.width);
+  m.length(b.length);
+  m.angle_deg(b.angle_deg);
   return m;
 }
 
-OrientedBox box_from_msg(const msg::CompactBox& m) { return {m.cx(), m.cy(), m.width(), m.length(), m.angle_deg()}; }
+OrientedBox box_from_msg(const msg::OrientedBox& m) { return {m.cx(), m.cy(), m.width(), m.length(), m.angle_deg()}; }
+
+// The region as regions.txt prints it, if its numbers fit the compact fields. Valid regions
+// always do: |cx| < 1e6 and sides < 1e5 px keep the bounds' thousandths under 2^31, and scores
+// are fractions of features (0..1).
+std::optional<msg::CompactRegion> region_to_msg(const Region& r) {
+  PrintedRegion p;
+  try {
+    p = printed_region(r);
+  } catch (const InvalidArgument&) {
+    return std::nullopt;
+  }
+  auto fits = [](int64_t v) { return v >= std::numeric_limits<int32_t>::min() && v <= std::numeric_limits<int32_t>::max(); };
+  if (!fits(p.x) || !fits(p.y) || !fits(p.width) || !fits(p.height) || p.score < 0 ||
+      p.score > std::numeric_limits<uint16_t>::max()) {
+    return std::nullopt;
+  }
+  msg::CompactRegion m;
+  m.x(static_cast<int32_t>(p.x));
+  m.y(static_cast<int32_t>(p.y));
+  m.width(static_cast<int32_t>(p.width));
+  m.height(static_cast<int32_t>(p.height));
+  m.score(static_cast<uint16_t>(p.score));
+  m.method(static_cast<uint8_t>(r.method));
+  return m;
+}
 
 // The same limits as the full samples (chain_convert.cpp).
 bool sane(const OrientedBox& b) {
@@ -35,7 +63,7 @@ int64_t capture_time_of(const FrameParts& p) {
 }  // namespace
 
 msg::FrameResults to_downlink_msg(const std::string& stream_id, int64_t frame_index, const FrameParts& parts,
-                                  uint64_t* dropped_tracks) {
+                                  DownlinkDrops* drops) {
   msg::FrameResults m;
   m.stream_id(stream_id);
   m.frame_index(frame_index);
@@ -54,11 +82,11 @@ msg::FrameResults to_downlink_msg(const std::string& stream_id, int64_t frame_in
     m.has_regions(true);
     m.regions().reserve(segmentation->regions.size());
     for (const auto& r : segmentation->regions) {
-      msg::CompactRegion mr;
-      mr.box(box_to_msg(r.box));
-      mr.score(static_cast<float>(r.score));
-      mr.method(static_cast<uint8_t>(r.method));
-      m.regions().push_back(mr);
+      if (auto mr = region_to_msg(r)) {
+        m.regions().push_back(*mr);
+      } else if (drops) {
+        ++drops->regions;
+      }
     }
   }
   if (const auto& tracks = parts.tracks) {
@@ -66,22 +94,22 @@ msg::FrameResults to_downlink_msg(const std::string& stream_id, int64_t frame_in
     m.tracks().reserve(tracks->tracks.size());
     for (const auto& track : tracks->tracks) {
       if (track.id > std::numeric_limits<uint32_t>::max()) {
-        if (dropped_tracks) ++*dropped_tracks;
+        if (drops) ++drops->tracks;
         continue;
       }
       msg::CompactTrack mt;
       mt.id(static_cast<uint32_t>(track.id));
       mt.state(static_cast<msg::TrackState>(static_cast<uint8_t>(track.state)));
       mt.box(box_to_msg(track.box));
-      mt.vx(static_cast<float>(track.velocity[0]));
-      mt.vy(static_cast<float>(track.velocity[1]));
+      mt.vx(track.velocity[0]);
+      mt.vy(track.velocity[1]);
       m.tracks().push_back(mt);
     }
   }
   return m;
 }
 
-std::optional<FrameParts> from_msg(const msg::FrameResults& m, std::string& why) {
+std::optional<GroundFrame> from_msg(const msg::FrameResults& m, std::string& why) {
   if (m.frame_index() < 1) {
     why = "frame index " + std::to_string(m.frame_index()) + " < 1";
     return std::nullopt;
@@ -90,7 +118,7 @@ std::optional<FrameParts> from_msg(const msg::FrameResults& m, std::string& why)
     why = std::to_string(m.regions().size()) + " regions / " + std::to_string(m.tracks().size()) + " tracks exceed the limits";
     return std::nullopt;
   }
-  FrameParts parts;
+  GroundFrame parts;
   const std::string stream = m.stream_id().to_string();
   if (m.has_motion()) {
     const auto& mm = m.motion();
@@ -113,20 +141,16 @@ std::optional<FrameParts> from_msg(const msg::FrameResults& m, std::string& why)
     parts.motion = std::move(motion);
   }
   if (m.has_regions()) {
-    SegmentationResult s;
-    s.stream_id = stream;
-    s.frame_index = m.frame_index();
-    s.capture_time_ns = m.capture_time_ns();
-    s.regions.reserve(m.regions().size());
+    std::vector<PrintedRegion> regions;
+    regions.reserve(m.regions().size());
     for (const auto& mr : m.regions()) {
-      Region r{box_from_msg(mr.box()), static_cast<SegmentationMethod>(mr.method()), mr.score(), -1};
-      if (!sane(r.box) || !std::isfinite(r.score) || mr.method() > static_cast<uint8_t>(SegmentationMethod::Fusion)) {
-        why = "region with an invalid box, score or method";
+      if (mr.width() < 0 || mr.height() < 0 || mr.method() > static_cast<uint8_t>(SegmentationMethod::Fusion)) {
+        why = "region with a negative size or an invalid method";
         return std::nullopt;
       }
-      s.regions.push_back(r);
+      regions.push_back({mr.x(), mr.y(), mr.width(), mr.height(), mr.score()});
     }
-    parts.segmentation = std::move(s);
+    parts.regions = std::move(regions);
   } else if (!m.regions().empty()) {
     why = "regions without has_regions";
     return std::nullopt;

@@ -76,7 +76,7 @@ class Results {
   }
 
   int streams_ended() const { return streams_ended_; }
-  uint64_t dropped_tracks() const { return dropped_tracks_; }
+  const dds::DownlinkDrops& drops() const { return drops_; }
   dds::TopicWriter<msg::FrameResultsPubSubType>& writer() { return *writer_; }
   dds::TopicReader<msg::TrackListPubSubType>& tracks() { return *tracks_; }
 
@@ -128,7 +128,7 @@ class Results {
   void publish_up_to(const std::string& id, StreamState& s, int64_t index) {
     while (!s.pending.empty() && s.pending.begin()->first <= index) {
       auto node = s.pending.extract(s.pending.begin());
-      auto sample = dds::to_downlink_msg(id, node.key(), node.mapped(), &dropped_tracks_);
+      auto sample = dds::to_downlink_msg(id, node.key(), node.mapped(), &drops_);
       if (!dds::publish(*writer_, sample, mode_)) health_.dropped();
       if (node.mapped().motion) health_.frame_in();
       health_.frame_out(node.key(), 0.0, dds::latency_ms_since(sample.capture_time_ns()));
@@ -155,7 +155,7 @@ class Results {
   dds::RejectLog rejects_;
   std::map<std::string, StreamState> streams_;
   int streams_ended_ = 0;
-  uint64_t dropped_tracks_ = 0;
+  dds::DownlinkDrops drops_;
   int matched_ = 0;
 };
 
@@ -310,7 +310,8 @@ int downlink_main(int argc, char** argv) {
         spdlog::info("preview: {} of {} images due at {} Hz sent (the rest gave way to the {} kbit/s share)",
                      preview->writer().samples_sent(), preview->due(), preview_options.rate_hz, preview_options.kbps);
       }
-      if (results.dropped_tracks() > 0) spdlog::warn("{} tracks had ids beyond 32 bits and were not sent", results.dropped_tracks());
+      if (results.drops().tracks > 0) spdlog::warn("{} tracks had ids beyond 32 bits and were not sent", results.drops().tracks);
+      if (results.drops().regions > 0) spdlog::warn("{} regions did not fit the compact fields and were not sent", results.drops().regions);
       health.report(msg::ComponentState::FINISHED);
       return results.streams_ended() >= streams ? kExitOk : kExitFailure;
     };

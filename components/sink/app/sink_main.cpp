@@ -235,7 +235,7 @@ int run_downlink_sink(dds::Participant& participant, const SinkOptions& o) {
         files.write_motion(*parts->motion);
         health.frame_in();
       }
-      if (parts->segmentation) files.write_segmentation(*parts->segmentation);
+      if (parts->regions) files.write_printed_regions(sample.frame_index(), *parts->regions);
       if (parts->tracks) files.write_tracks(*parts->tracks);
       health.frame_out(sample.frame_index(), 0.0, dds::latency_ms_since(sample.capture_time_ns()));
     }

@@ -1,15 +1,16 @@
 #pragma once
 // Chain types <-> the per-frame downlink sample (idl/downlink.idl): what crosses the air -> ground
-// link. Only what the ground uses travels: the homography (exact), regions and tracks as float32
-// boxes and velocities (1e-4 px at 1000 px, below the 1/1000 px the result files print), no
-// features, clusters, uncertainties or feature ids. Received samples are validated like the
-// full ones.
+// link. Only what the ground uses travels, exactly, so the ground's files are byte-identical to
+// `uavmot process`'s: the homography and tracks' boxes and velocities as float64, regions as the
+// numbers regions.txt prints (core PrintedRegion); no features, clusters, uncertainties or
+// feature ids. Received samples are validated like the full ones.
 
 #include <optional>
 #include <string>
 
 #include "downlink.h"
 #include "uavmot/core/chain_types.hpp"
+#include "uavmot/core/result_files.hpp"
 
 namespace uavmot::dds {
 
@@ -20,12 +21,24 @@ struct FrameParts {
   std::optional<TrackList> tracks;
 };
 
-// Tracks whose id does not fit the compact id (32 bits) are left out and counted in `dropped_tracks`.
-msg::FrameResults to_downlink_msg(const std::string& stream_id, int64_t frame_index, const FrameParts& parts,
-                                  uint64_t* dropped_tracks = nullptr);
+// What the ground gets of a frame: regions as printed, motion without features, tracks without
+// uncertainties and feature ids.
+struct GroundFrame {
+  std::optional<MotionEstimate> motion;
+  std::optional<std::vector<PrintedRegion>> regions;
+  std::optional<TrackList> tracks;
+};
 
-// What the ground gets back: features, clusters, uncertainties and feature ids are empty/zero.
+// Left out and counted: tracks whose id does not fit 32 bits, regions whose printed numbers do not
+// fit the compact fields (never for valid samples: see the limits in downlink_convert.cpp).
+struct DownlinkDrops {
+  uint64_t tracks = 0;
+  uint64_t regions = 0;
+};
+msg::FrameResults to_downlink_msg(const std::string& stream_id, int64_t frame_index, const FrameParts& parts,
+                                  DownlinkDrops* drops = nullptr);
+
 // nullopt with `why` set when the sample is malformed.
-std::optional<FrameParts> from_msg(const msg::FrameResults& sample, std::string& why);
+std::optional<GroundFrame> from_msg(const msg::FrameResults& sample, std::string& why);
 
 }  // namespace uavmot::dds
