@@ -2,7 +2,7 @@
 // link: it reads motion, segmentation and tracks on the UAV's own domain (shared memory, never on
 // the link) and publishes on the link's domain, once per frame, what the ground uses:
 //   uavmot/motion + uavmot/segmentation + uavmot/tracks -> uavmot/downlink/results
-//       homography and quality, regions, tracks (float32 boxes); no features, clusters,
+//       homography and quality, regions (as regions.txt prints them), tracks (float64); no features, clusters,
 //       uncertainties or feature ids (idl/downlink.idl)
 //   uavmot/health -> uavmot/health      the air components' reports, stream "*" -> --stream-id
 //   uavmot/frames -> uavmot/downlink/preview   optional: JPEG, --preview-rate Hz, --preview-width px,
@@ -41,8 +41,17 @@ namespace uavmot {
 namespace {
 
 // Frames whose tracks have not come yet, per stream. Bounded: a tracker that stopped publishing
-// must not make the downlink hoard (the oldest frame goes without tracks).
-constexpr size_t kMaxPendingFrames = 64;
+// must not make the downlink hoard (the oldest frame goes without tracks). In lossless mode every
+// part comes, but motion runs ahead of segmentation and tracks by as much as their readers' queues
+// hold (64 frames each) while the link holds the downlink back: the bound must be above that, or a
+// frame would go without its regions (seen with the link down for 8 s).
+constexpr size_t kMaxPendingFramesLive = 64;
+constexpr size_t kMaxPendingFramesLossless = 1024;
+
+// What the link does not carry need not wait in memory (dense features are most of a motion sample).
+void strip(MotionEstimate& m) { m.features = {}; }
+void strip(SegmentationResult& s) { s.clusters = {}; }
+void strip(TrackList&) {}
 
 struct StreamState {
   std::map<int64_t, dds::FrameParts> pending;
@@ -112,12 +121,13 @@ class Results {
       const int64_t index = sample.frame_index();
       s.last_index = std::max(s.last_index, index);
       dds::FrameParts& frame = s.pending[index];
+      strip(*value);
       frame.*part = std::move(*value);
       // Each input arrives in frame order, so once frame k is complete no earlier frame will get
       // another part: everything up to k can go.
       if (frame.motion && frame.segmentation && frame.tracks) {
         publish_up_to(id, s, index);
-      } else if (s.pending.size() > kMaxPendingFrames) {
+      } else if (s.pending.size() > (mode_ == dds::DeliveryMode::Lossless ? kMaxPendingFramesLossless : kMaxPendingFramesLive)) {
         publish_up_to(id, s, s.pending.begin()->first);
       }
     }

@@ -2,7 +2,7 @@
 // `uavmot process` (tracks.txt, tracks_obb.csv, homographies.txt, features.csv, clusters.txt,
 // regions.txt, summary.json) through the same writer, so lossless runs are byte-identical.
 // With --downlink it reads what crosses an air -> ground link instead: uavmot/downlink/results,
-// one compact sample per frame (no features or clusters, float32 boxes; docs/deployment.md), and
+// one compact sample per frame (no features or clusters; exact, docs/deployment.md), and
 // with --preview-dir it also saves the link's JPEG previews (uavmot/downlink/preview) there.
 // With several streams, each gets a folder of its own under --out.
 
