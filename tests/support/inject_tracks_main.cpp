@@ -51,10 +51,10 @@ int inject_main(int argc, char** argv) {
         msg::CompactTrack track;
         track.id(424242);
         track.state(msg::TrackState::CONFIRMED);
-        track.box().cx(10.0);
-        track.box().cy(10.0);
-        track.box().width(2.0);
-        track.box().length(5.0);
+        track.box().cx(10.0F);
+        track.box().cy(10.0F);
+        track.box().width(2.0F);
+        track.box().length(5.0F);
         sample.tracks().push_back(track);
         if (writer->write(sample)) ++written;
         max_matched = std::max(max_matched, writer->matched());

@@ -52,7 +52,10 @@ run() {
       echo "$(date +%s.%N) $(tx bytes) $(tx packets)" >>"$out/link-$name-tx.txt"
       sleep 1
     done &
-    sleep 9  # discovery, then data for a few seconds
+    # Discovery and start-up (slow on a loaded machine), then data for a few seconds.
+    local until=$((SECONDS + 60))
+    while [ $(($(tx bytes) - b0)) -lt 300000 ] && [ $SECONDS -lt $until ]; do sleep 0.5; done
+    sleep 2
     ip netns exec $ground "$bin/uavmot" status --once --wait 2.5 --domain $domain --transport udp >"$out/link-$name-status.txt" 2>&1 || true
   fi
   wait $g && wait $a

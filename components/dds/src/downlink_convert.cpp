@@ -11,17 +11,17 @@
 namespace uavmot::dds {
 namespace {
 
-msg::OrientedBox box_to_msg(const OrientedBox& b) {
-  msg::OrientedBox m;
-  m.cx(b.cx);
-  m.cy(b.cy);
-  m.width(b.width);
-  m.length(b.length);
-  m.angle_deg(b.angle_deg);
+msg::CompactBox box_to_msg(const OrientedBox& b) {
+  msg::CompactBox m;
+  m.cx(static_cast<float>(b.cx));
+  m.cy(static_cast<float>(b.cy));
+  m.width(static_cast<float>(b.width));
+  m.length(static_cast<float>(b.length));
+  m.angle_deg(static_cast<float>(b.angle_deg));
   return m;
 }
 
-OrientedBox box_from_msg(const msg::OrientedBox& m) { return {m.cx(), m.cy(), m.width(), m.length(), m.angle_deg()}; }
+OrientedBox box_from_msg(const msg::CompactBox& m) { return {m.cx(), m.cy(), m.width(), m.length(), m.angle_deg()}; }
 
 // The region as regions.txt prints it, if its numbers fit the compact fields. Valid regions
 // always do: |cx| < 1e6 and sides < 1e5 px keep the bounds' thousandths under 2^31, and scores
@@ -101,8 +101,9 @@ msg::FrameResults to_downlink_msg(const std::string& stream_id, int64_t frame_in
       mt.id(static_cast<uint32_t>(track.id));
       mt.state(static_cast<msg::TrackState>(static_cast<uint8_t>(track.state)));
       mt.box(box_to_msg(track.box));
-      mt.vx(track.velocity[0]);
-      mt.vy(track.velocity[1]);
+      mt.vx(static_cast<float>(track.velocity[0]));
+      mt.vy(static_cast<float>(track.velocity[1]));
+      if (drops && !is_float32_exact(track)) ++drops->inexact_tracks;
       m.tracks().push_back(mt);
     }
   }

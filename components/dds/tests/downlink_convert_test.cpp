@@ -44,6 +44,7 @@ FrameParts full_frame() {
   track.velocity = {1.23456, -0.000123};
   track.sigma_x = 2.0;
   track.feature_ids = {1, 2};
+  round_to_float32(track);  // as the tracker publishes it
   t.tracks = {track};
   p.tracks = t;
   return p;
@@ -77,10 +78,12 @@ TEST(DownlinkConvert, OneFrameRoundTripsHomographyAndTracksExactlyAndRegionsAsPr
   const Track& t = out->tracks->tracks[0];
   EXPECT_EQ(t.id, 4'000'000'000ULL);
   EXPECT_EQ(t.state, TrackState::Coasting);
-  EXPECT_EQ(t.box.cx, 512.0005);
+  EXPECT_EQ(t.box.cx, in.tracks->tracks[0].box.cx);
+  EXPECT_EQ(t.box.cy, 300.25);
   EXPECT_EQ(t.box.angle_deg, -45.0);
-  EXPECT_EQ(t.velocity[0], 1.23456);
-  EXPECT_EQ(t.velocity[1], -0.000123);
+  EXPECT_EQ(t.velocity[0], in.tracks->tracks[0].velocity[0]);
+  EXPECT_EQ(t.velocity[1], in.tracks->tracks[0].velocity[1]);
+  EXPECT_NEAR(t.box.cx, 512.0005, 1e-4);
   EXPECT_EQ(t.sigma_x, 0.0);
   EXPECT_TRUE(t.feature_ids.empty());
 }
@@ -120,6 +123,7 @@ TEST(DownlinkConvert, GroundFilesAreByteIdenticalToTheInProcessWriter) {
       t.state = i % 3 == 0 ? TrackState::Tentative : TrackState::Confirmed;
       t.box = {pos(rng), pos(rng), side(rng), side(rng), angle(rng)};
       t.velocity = {i % 4 == 0 ? tiny(rng) : v(rng), tiny(rng)};  // -0.0000 in vx/vy
+      round_to_float32(t);  // as the tracker publishes it
       p.tracks->tracks.push_back(t);
     }
     frames.push_back(p);
@@ -165,6 +169,16 @@ TEST(DownlinkConvert, MissingPartsStayMissingAndOversizedIdsAreCounted) {
   EXPECT_TRUE(out->tracks->tracks.empty());
   EXPECT_EQ(drops.tracks, 1u);
   EXPECT_EQ(drops.regions, 0u);
+  EXPECT_EQ(drops.inexact_tracks, 0u);
+}
+
+TEST(DownlinkConvert, TracksThatAreNotFloat32ValuesAreCounted) {
+  FrameParts in = full_frame();
+  in.tracks->tracks[0].box.cx = 512.0005;  // not rounded by a tracker
+  DownlinkDrops drops;
+  to_downlink_msg("uav2", 9, in, &drops);
+  EXPECT_EQ(drops.inexact_tracks, 1u);
+  EXPECT_EQ(drops.tracks, 0u);
 }
 
 TEST(DownlinkConvert, RegionsWhosePrintedNumbersDoNotFitAreCounted) {
@@ -197,7 +211,7 @@ TEST(DownlinkConvert, RejectsMalformedSamples) {
   EXPECT_FALSE(from_msg(sample, why));
 
   sample = to_downlink_msg("uav1", 1, full_frame());
-  sample.tracks()[0].vx(std::numeric_limits<double>::infinity());
+  sample.tracks()[0].vx(std::numeric_limits<float>::infinity());
   EXPECT_FALSE(from_msg(sample, why));
   EXPECT_NE(why.find("track"), std::string::npos);
 

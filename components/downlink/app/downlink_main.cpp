@@ -2,7 +2,7 @@
 // link: it reads motion, segmentation and tracks on the UAV's own domain (shared memory, never on
 // the link) and publishes on the link's domain, once per frame, what the ground uses:
 //   uavmot/motion + uavmot/segmentation + uavmot/tracks -> uavmot/downlink/results
-//       homography and quality, regions (as regions.txt prints them), tracks (float64); no features, clusters,
+//       homography and quality, regions (as regions.txt prints them), tracks (float32, as the tracker rounds them); no features, clusters,
 //       uncertainties or feature ids (idl/downlink.idl)
 //   uavmot/health -> uavmot/health      the air components' reports, stream "*" -> --stream-id
 //   uavmot/frames -> uavmot/downlink/preview   optional: JPEG, --preview-rate Hz, --preview-width px,
@@ -321,6 +321,10 @@ int downlink_main(int argc, char** argv) {
                      preview->writer().samples_sent(), preview->due(), preview_options.rate_hz, preview_options.kbps);
       }
       if (results.drops().tracks > 0) spdlog::warn("{} tracks had ids beyond 32 bits and were not sent", results.drops().tracks);
+      if (results.drops().inexact_tracks > 0) {
+        spdlog::warn("{} tracks were not float32 values and were sent rounded (not from uavmot's tracker?)",
+                     results.drops().inexact_tracks);
+      }
       if (results.drops().regions > 0) spdlog::warn("{} regions did not fit the compact fields and were not sent", results.drops().regions);
       health.report(msg::ComponentState::FINISHED);
       return results.streams_ended() >= streams ? kExitOk : kExitFailure;

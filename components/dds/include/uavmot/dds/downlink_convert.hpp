@@ -1,9 +1,9 @@
 #pragma once
 // Chain types <-> the per-frame downlink sample (idl/downlink.idl): what crosses the air -> ground
 // link. Only what the ground uses travels, exactly, so the ground's files are byte-identical to
-// `uavmot process`'s: the homography and tracks' boxes and velocities as float64, regions as the
-// numbers regions.txt prints (core PrintedRegion); no features, clusters, uncertainties or
-// feature ids. Received samples are validated like the full ones.
+// `uavmot process`'s: the homography as float64, tracks' boxes and velocities as float32 (the
+// tracker rounds them to float32: core round_to_float32), regions as the numbers regions.txt
+// prints (core PrintedRegion); no features, clusters, uncertainties or feature ids. Received samples are validated like the full ones.
 
 #include <optional>
 #include <string>
@@ -31,9 +31,12 @@ struct GroundFrame {
 
 // Left out and counted: tracks whose id does not fit 32 bits, regions whose printed numbers do not
 // fit the compact fields (never for valid samples: see the limits in downlink_convert.cpp).
+// Counted only: tracks sent rounded because they were not float32 values (not from uavmot's
+// tracker); the ground's files may then differ from the air's in a last digit.
 struct DownlinkDrops {
   uint64_t tracks = 0;
   uint64_t regions = 0;
+  uint64_t inexact_tracks = 0;
 };
 msg::FrameResults to_downlink_msg(const std::string& stream_id, int64_t frame_index, const FrameParts& parts,
                                   DownlinkDrops* drops = nullptr);
