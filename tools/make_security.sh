@@ -80,10 +80,10 @@ grant() {  # name "published topics" "subscribed topics"
   grant motion "uavmot/motion uavmot/health" "uavmot/frames uavmot/health"
   grant segmentation "uavmot/segmentation uavmot/health" "uavmot/frames uavmot/motion uavmot/health"
   grant tracking "uavmot/tracks uavmot/tracker_state uavmot/health" "uavmot/motion uavmot/segmentation uavmot/health"
-  grant downlink "uavmot/downlink/motion uavmot/downlink/regions uavmot/downlink/tracks uavmot/health" \
-    "uavmot/motion uavmot/segmentation uavmot/tracks uavmot/health"
+  grant downlink "uavmot/downlink/results uavmot/downlink/preview uavmot/health" \
+    "uavmot/frames uavmot/motion uavmot/segmentation uavmot/tracks uavmot/health"
   grant sink "uavmot/health" \
-    "uavmot/motion uavmot/segmentation uavmot/tracks uavmot/downlink/motion uavmot/downlink/regions uavmot/downlink/tracks uavmot/health"
+    "uavmot/motion uavmot/segmentation uavmot/tracks uavmot/downlink/results uavmot/downlink/preview uavmot/health"
   printf '  </permissions>\n</dds>\n'
 } > permissions.xml
 

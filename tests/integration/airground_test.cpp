@@ -2,8 +2,8 @@
 // chain (bringup/air.yaml) in one or two "UAV" namespaces, the ground half (bringup/ground.yaml)
 // in another, real processes over real UDP. Needs root and `ip netns`; skipped otherwise.
 //
-// The downlink carries compact samples (float32 boxes, idl/downlink.idl), so the ground's files
-// equal `uavmot process`'s to within one unit of the last printed digit (homographies exactly).
+// The downlink carries one compact but exact sample per frame (idl/downlink.idl), so the ground's files
+// are byte-identical to `uavmot process`'s.
 
 #include <arpa/inet.h>
 #include <fcntl.h>
@@ -14,6 +14,7 @@
 #include <sys/socket.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cstdio>
 #include <cstdlib>
@@ -28,7 +29,6 @@
 #include <gtest/gtest.h>
 
 #include "child_process.hpp"
-#include "result_compare.hpp"
 
 namespace uavmot {
 namespace {
@@ -60,6 +60,11 @@ std::string capture(const std::string& command) {
     ::pclose(pipe);
   }
   return out;
+}
+
+int64_t lines(const std::string& file) {
+  const std::string text = testing::read_file(file);
+  return std::count(text.begin(), text.end(), '\n');
 }
 
 int last_frame_in(const std::string& mot_file) {
@@ -350,16 +355,11 @@ class AirGround : public ::testing::Test {
     return run;
   }
 
-  // The ground's results against `uavmot process` on the same sequence: homographies exactly,
-  // boxes to the last printed digit (float32 on the downlink).
+  // The ground's results against `uavmot process` on the same sequence: the same bytes.
   static void expect_same_results(const std::string& out, const std::string& process_dir = root_ + "/process_paper") {
-    const std::string expected = read_file(process_dir + "/tracks.txt");
-    ASSERT_FALSE(expected.empty()) << "the in-process run found no tracks: nothing would be compared";
-    EXPECT_EQ(read_file(out + "/homographies.txt"), read_file(process_dir + "/homographies.txt"));
-    for (const char* file : {"tracks.txt", "tracks_obb.csv", "regions.txt"}) {
-      const auto c = testing::compare_to_last_digit(out + "/" + file, process_dir + "/" + file);
-      EXPECT_TRUE(c.equal()) << file << ": " << c.difference;
-      std::printf("[airground] %s: %d numbers differ from uavmot process in their last digit\n", file, c.numbers_differing);
+    ASSERT_FALSE(read_file(process_dir + "/tracks.txt").empty()) << "the in-process run found no tracks: nothing would be compared";
+    for (const char* file : {"homographies.txt", "tracks.txt", "tracks_obb.csv", "regions.txt"}) {
+      EXPECT_EQ(read_file(out + "/" + file), read_file(process_dir + "/" + file)) << out << "/" << file;
     }
   }
 
@@ -380,13 +380,10 @@ TEST_F(AirGround, LosslessSplitDeliversTheInProcessResultsAndOnlyCompactTopicsCr
   // Payload per frame (the downlink's own count) and everything on the wire per frame, discovery
   // and health included. One 8-bit frame of the sequence alone is larger than all of it.
   const auto payload = downlink_bytes(run.air_log());
-  ASSERT_EQ(payload.size(), 3u) << run.air_log();
-  uint64_t payload_total = 0;
-  for (const auto& [topic, bytes] : payload) {
-    payload_total += bytes;
-    std::printf("[airground] lossless: %s %llu bytes (%.0f per frame)\n", topic.c_str(), static_cast<unsigned long long>(bytes),
-                static_cast<double>(bytes) / kFrames);
-  }
+  ASSERT_EQ(payload.count("uavmot/downlink/results"), 1u) << run.air_log();
+  const uint64_t payload_total = payload.at("uavmot/downlink/results");
+  std::printf("[airground] lossless: %.1f regions and %.1f tracks per frame\n", static_cast<double>(lines(run.out + "/regions.txt")) / kFrames,
+              static_cast<double>(lines(run.out + "/tracks_obb.csv") - 1) / kFrames);
   const double wire_per_frame = static_cast<double>(run.air_tx_bytes) / kFrames;
   std::printf("[airground] lossless: payload %.0f bytes per frame (%.3f Mbit/s at 25 fps); on the wire %.0f (%.3f Mbit/s)\n",
               static_cast<double>(payload_total) / kFrames, payload_total * 25.0 * 8.0 / kFrames / 1e6, wire_per_frame,
@@ -402,7 +399,7 @@ TEST_F(AirGround, LosslessSplitDeliversTheInProcessResultsAndOnlyCompactTopicsCr
   // runs on shared memory in its own domain: not even its discovery reaches the link.
   ASSERT_TRUE(run.captured);
   EXPECT_NE(run.link_bytes.find("uav1"), std::string::npos);
-  EXPECT_NE(run.link_bytes.find("uavmot/downlink/tracks"), std::string::npos);
+  EXPECT_NE(run.link_bytes.find("uavmot/downlink/results"), std::string::npos);
   for (const char* internal : {"uavmot/frames", "uavmot/motion", "uavmot/segmentation", "uavmot/tracks"}) {
     EXPECT_EQ(run.link_bytes.find(internal), std::string::npos) << internal << " appeared on the link";
   }
@@ -415,7 +412,7 @@ TEST_F(AirGround, FivePercentRandomLossLosesNoReliableSample) {
   ASSERT_EQ(run.air_code(), 0) << run.air_log();
   const uint64_t dropped = link_->dropped_packets();
   std::printf("[airground] loss: nft dropped %llu packets\n", static_cast<unsigned long long>(dropped));
-  EXPECT_GT(dropped, 10u) << "the loss rule dropped (almost) nothing: the test would not show anything";
+  EXPECT_GE(dropped, 5u) << "the loss rule dropped (almost) nothing: the test would not show anything";
   expect_same_results(run.out);
 }
 
@@ -579,27 +576,67 @@ TEST_F(AirGround, LinkDownAndUpAgainRediscoversAndResumes) {
   expect_same_results(run.out);
 }
 
-// Last on purpose (see docs/deployment.md, known problems): the link limited to 2 Mbit/s
-// (tbf) in live mode. The compact downlink needs well under 1 Mbit/s, so the chain keeps up.
-TEST_F(AirGround, LiveChainKeepsUpOverATwoMegabitLink) {
+// The link limited to 2 Mbit/s (tbf), live mode at 25 fps, and a JPEG preview asked for at far
+// more than its share: full-size frames at 10 Hz (megabits per second) with a 1 Mbit/s share
+// (flow controller). The preview gives way (most images never leave the air); the results do
+// not (every sample the downlink wrote arrived, and the end of stream got through).
+TEST_F(AirGround, OnATwoMegabitLinkThePreviewNotTheTracksGivesWay) {
   ASSERT_TRUE(link_->limit_downlink("2mbit")) << "tc could not add the tbf qdisc";
-  // Live: the source publishes at the sequence's 25 fps. The halves are stopped after 60 s if the
-  // end of stream has not made it through by then (what the sink has is written on stop).
-  const Run run = run_split("tbf", 135, {"mode=live"}, std::chrono::seconds(60));
-  const int last_track_frame = last_frame_in(run.out + "/tracks.txt");
-  const int last_motion_frame = last_frame_in(run.out + "/homographies.txt");
+  const std::string previews = root_ + "/tbf_previews";
+  const Run run = run_split("tbf", 135,
+                            {"mode=live", "preview_rate=10", "preview_width=1024", "preview_quality=90", "preview_kbps=1000",
+                             "preview_dir=" + previews},
+                            std::chrono::seconds(60));
   const std::string tc = capture(std::string(kIp) + " netns exec " + link_->air() + " tc -s qdisc show dev " + link_->air_dev());
-  std::printf("[airground] tbf 2 Mbit/s, live: air sent %llu bytes; ground ended by itself: %s; last frame with "
-              "tracks %d, with motion %d\n%s\n",
-              static_cast<unsigned long long>(run.air_tx_bytes), run.ground_code.has_value() ? "yes" : "no", last_track_frame,
-              last_motion_frame, tc.c_str());
   EXPECT_NE(tc.find("tbf"), std::string::npos) << tc;
-  // The end of stream got through and results reached the end of the sequence (live mode may
-  // skip frames when the host is loaded; the last ones are never old enough to be skipped).
-  EXPECT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log();
-  EXPECT_EQ(run.air_code(), 0) << run.air_log();
-  EXPECT_GE(last_track_frame, kFrames - 5);
-  EXPECT_GE(last_motion_frame, kFrames - 5);
+  ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log();
+  ASSERT_EQ(run.air_code(), 0) << run.air_log();
+  // Samples written by the downlink (air log) and received by the sink (ground log), per topic.
+  auto counts = [](const std::string& log, const std::string& suffix) {
+    std::map<std::string, std::pair<uint64_t, uint64_t>> out;
+    const std::regex line(R"((uavmot/downlink/\w+): (\d+) samples, (\d+) bytes)" + suffix);
+    for (std::sregex_iterator it(log.begin(), log.end(), line), end; it != end; ++it) {
+      out[(*it)[1]] = {std::stoull((*it)[2]), std::stoull((*it)[3])};
+    }
+    return out;
+  };
+  const auto sent = counts(run.air_log(), "");
+  const auto received = counts(run.ground_log, " received");
+  const std::string results = "uavmot/downlink/results";
+  ASSERT_TRUE(sent.count(results) && received.count(results)) << run.air_log() << run.ground_log;
+  EXPECT_EQ(received.at(results).first, sent.at(results).first) << "results lost on the link";
+  EXPECT_GE(sent.at(results).first, 10u) << "the chain produced (almost) nothing: the comparison would be empty";
+  const std::string preview = "uavmot/downlink/preview";
+  ASSERT_TRUE(sent.count(preview) && received.count(preview)) << run.air_log() << run.ground_log;
+  const auto [preview_sent, preview_sent_bytes] = sent.at(preview);
+  const auto [preview_received, preview_received_bytes] = received.at(preview);
+  const double seconds = kFrames / 25.0;
+  // Preview images that were due at 10 Hz, and how many went (uavmot-downlink's log).
+  std::smatch due;
+  ASSERT_TRUE(std::regex_search(run.air_log(), due, std::regex(R"(preview: (\d+) of (\d+) images due)"))) << run.air_log();
+  const uint64_t preview_due = std::stoull(due[2]);
+  std::printf("[airground] tbf 2 Mbit/s, live, preview 10 Hz full size with a 1 Mbit/s share: %llu images due, %llu sent "
+              "(%llu bytes), %llu received (%.2f Mbit/s over the %.1f s of the sequence); results: %llu of %llu samples "
+              "received; air sent %llu bytes\n%s\n",
+              static_cast<unsigned long long>(preview_due), static_cast<unsigned long long>(preview_sent),
+              static_cast<unsigned long long>(preview_sent_bytes), static_cast<unsigned long long>(preview_received),
+              preview_received_bytes * 8.0 / seconds / 1e6, seconds, static_cast<unsigned long long>(received.at(results).first),
+              static_cast<unsigned long long>(sent.at(results).first), static_cast<unsigned long long>(run.air_tx_bytes), tc.c_str());
+  // Full-size images at 10 Hz would need several times the link; the preview gave way (far fewer
+  // images than due), got through, and stayed within its share.
+  const double image_bytes = preview_sent > 0 ? static_cast<double>(preview_sent_bytes) / preview_sent : 0.0;
+  EXPECT_GT(image_bytes * 8.0 * 10.0, 2e6) << "the preview did not ask for more than the link carries";
+  EXPECT_GE(preview_received, 1u) << "no preview got through at all";
+  EXPECT_LT(preview_sent * 2, preview_due) << "the preview did not give way";
+  EXPECT_LT(preview_received_bytes * 8.0 / seconds, 1.3e6) << "the preview took more than its 1 Mbit/s";
+  EXPECT_EQ(static_cast<uint64_t>(std::distance(fs::directory_iterator(previews), fs::directory_iterator())), preview_received);
+  // The chain kept running to the end of the sequence. (How many frames the results cover depends
+  // on the host: in live mode a loaded UAV skips frames; those that were sent all arrived, above.)
+  const int last_tracks = last_frame_in(run.out + "/tracks.txt"), last_motion = last_frame_in(run.out + "/homographies.txt");
+  std::printf("[airground] tbf: last frame with tracks %d, with motion %d; %lld frames with motion\n", last_tracks, last_motion,
+              static_cast<long long>(lines(run.out + "/homographies.txt")));
+  EXPECT_GE(last_motion, kFrames - 5) << "the results stopped before the end of the sequence";
+  EXPECT_GE(last_tracks, kFrames - 5) << "the tracks stopped before the end of the sequence";
 }
 
 }  // namespace

@@ -1,5 +1,5 @@
-// uavmot-test-inject: a participant that tries to inject made-up tracks into a ground station
-// (uavmot/downlink/tracks) for a stream: one bogus track (id 424242) per frame index 1..N, over
+// uavmot-test-inject: a participant that tries to inject made-up results into a ground station
+// (uavmot/downlink/results) for a stream: one bogus track (id 424242) per frame index 1..N, over
 // and over, for --seconds. Prints whether its writer was refused and how many readers it matched.
 // Exit 0 after writing, 3 when the writer could not even be created (refused by access control).
 
@@ -23,7 +23,7 @@ int inject_main(int argc, char** argv) {
   std::string stream = "uav1";
   double seconds = 10.0;
   int frames = 100;
-  return run_app(argc, argv, "test-inject", "try to inject bogus tracks into uavmot/downlink/tracks (tests)", [&](CLI::App& app) {
+  return run_app(argc, argv, "test-inject", "try to inject bogus tracks into uavmot/downlink/results (tests)", [&](CLI::App& app) {
     app.add_option("--stream", stream, "stream id to impersonate")->capture_default_str();
     app.add_option("--seconds", seconds, "how long to keep writing")->capture_default_str();
     app.add_option("--frames", frames, "frame indices 1..N, repeated")->capture_default_str();
@@ -33,9 +33,9 @@ int inject_main(int argc, char** argv) {
       dds::finalize(node, "inject");
       install_shutdown_handler();
       dds::Participant participant(node.dds);
-      std::unique_ptr<dds::TopicWriter<msg::CompactTrackListPubSubType>> writer;
+      std::unique_ptr<dds::TopicWriter<msg::FrameResultsPubSubType>> writer;
       try {
-        writer = participant.make_writer<msg::CompactTrackListPubSubType>(dds::kDownlinkTracksTopic, dds::TopicClass::Downlink);
+        writer = participant.make_writer<msg::FrameResultsPubSubType>(dds::kDownlinkResultsTopic, dds::TopicClass::Downlink);
       } catch (const InputError& e) {
         spdlog::info("writer refused: {}", e.what());
         return 3;
@@ -44,9 +44,10 @@ int inject_main(int argc, char** argv) {
       int max_matched = 0;
       uint64_t written = 0;
       for (int k = 1; std::chrono::steady_clock::now() < end && !shutdown_requested(); k = k % frames + 1) {
-        msg::CompactTrackList sample;
+        msg::FrameResults sample;
         sample.stream_id(stream);
         sample.frame_index(k);
+        sample.has_tracks(true);
         msg::CompactTrack track;
         track.id(424242);
         track.state(msg::TrackState::CONFIRMED);

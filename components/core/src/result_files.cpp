@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "uavmot/core/error.hpp"
+#include "uavmot/core/printed_number.hpp"
 
 namespace uavmot {
 namespace {
@@ -15,7 +16,18 @@ namespace {
 std::string mot_box_line(int64_t frame, int64_t id, const cv::Rect2d& r, double conf) {
   return fmt::format("{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},-1,-1,-1\n", frame, id, r.x, r.y, r.width, r.height, conf);
 }
+
+std::string region_line(int64_t frame, const PrintedRegion& r) {
+  return fmt::format("{},-1,{},{},{},{},{},-1,-1,-1\n", frame, format_printed_fixed(r.x, 3), format_printed_fixed(r.y, 3),
+                     format_printed_fixed(r.width, 3), format_printed_fixed(r.height, 3), format_printed_fixed(r.score, 3));
+}
 }  // namespace
+
+PrintedRegion printed_region(const Region& region) {
+  const cv::Rect2d r = axis_aligned_bounds(region.box);
+  return {printed_fixed(r.x, 3), printed_fixed(r.y, 3), printed_fixed(r.width, 3), printed_fixed(r.height, 3),
+          printed_fixed(region.score, 3)};
+}
 
 ResultFilesWriter::ResultFilesWriter(ResultFilesOptions options) : options_(std::move(options)) {
   std::error_code ec;
@@ -70,9 +82,13 @@ void ResultFilesWriter::write_segmentation(const SegmentationResult& segmentatio
     clusters_ << mot_box_line(segmentation.frame_index, -1, axis_aligned_bounds(c.box),
                               static_cast<double>(c.feature_ids.size()));
   }
-  for (const auto& r : segmentation.regions) {
-    regions_ << mot_box_line(segmentation.frame_index, -1, axis_aligned_bounds(r.box), r.score);
-  }
+  for (const auto& r : segmentation.regions) regions_ << region_line(segmentation.frame_index, printed_region(r));
+}
+
+void ResultFilesWriter::write_printed_regions(int64_t frame_index, const std::vector<PrintedRegion>& regions) {
+  if (closed_) throw std::logic_error("ResultFilesWriter used after close()");
+  if (!options_.write_segmentation) return;
+  for (const auto& r : regions) regions_ << region_line(frame_index, r);
 }
 
 void ResultFilesWriter::write_tracks(const TrackList& tracks) {

@@ -31,6 +31,19 @@ msg::Frame to_msg(const Frame& frame) {
   return sample;
 }
 
+msg::Frame to_jpeg_msg(const Frame& frame, int quality) {
+  msg::Frame sample;
+  sample.stream_id(frame.stream_id);
+  sample.frame_index(frame.index);
+  sample.capture_time_ns(frame.capture_time_ns);
+  sample.width(static_cast<uint32_t>(frame.image.cols));
+  sample.height(static_cast<uint32_t>(frame.image.rows));
+  sample.encoding(msg::Encoding::JPEG);
+  sample.end_of_stream(false);
+  cv::imencode(".jpg", frame.image, sample.data(), {cv::IMWRITE_JPEG_QUALITY, quality});
+  return sample;
+}
+
 msg::Frame end_of_stream_frame(const std::string& stream_id, int64_t last_index) {
   msg::Frame sample;
   sample.stream_id(stream_id);

@@ -1,11 +1,13 @@
 #include "uavmot/dds/participant.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
 #include <set>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/rtps/flowcontrol/FlowControllerDescriptor.hpp>
 #include <fastrtps/utils/IPLocator.h>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
@@ -76,6 +78,16 @@ Participant::Participant(DdsOptions options) : options_(std::move(options)) {
   }
   qos.name(options_.participant_name + "@" + std::to_string(::getpid()));
   if (!options_.discovery_server.empty()) use_discovery_server(qos, options_.discovery_server);
+  for (const FlowLimit& limit : options_.flow_limits) {
+    auto descriptor = std::make_shared<eprosima::fastdds::rtps::FlowControllerDescriptor>();
+    descriptor->name = limit.name.c_str();  // options_ lives as long as the participant
+    descriptor->scheduler = eprosima::fastdds::rtps::FlowControllerSchedulerPolicy::FIFO;
+    descriptor->period_ms = 100;
+    // Bytes per 100 ms period; 0 is Fast DDS's "no limit", so at least 1.
+    descriptor->max_bytes_per_period =
+        static_cast<int32_t>(std::clamp<uint64_t>(limit.bits_per_second / 8 / 10, 1, 2147483647));
+    qos.flow_controllers().push_back(descriptor);
+  }
   participant_ = factory->create_participant(options_.domain_id, qos);
   if (!participant_) throw InputError("cannot create a DDS participant on domain " + std::to_string(options_.domain_id));
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
@@ -101,10 +113,17 @@ fdds::Topic* Participant::topic_for(const std::string& name, fdds::TypeSupport t
   return topic;
 }
 
-fdds::DataWriter* Participant::create_writer(fdds::Topic* topic, const std::string& profile) {
+fdds::DataWriter* Participant::create_writer(fdds::Topic* topic, const std::string& profile, const std::string& flow) {
   fdds::DataWriterQos qos;
   if (publisher_->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
     throw InputError("writer profile '" + profile + "' is not in '" + options_.profiles_file + "'");
+  }
+  if (!flow.empty()) {
+    const auto limit = std::find_if(options_.flow_limits.begin(), options_.flow_limits.end(),
+                                    [&](const FlowLimit& l) { return l.name == flow; });
+    if (limit == options_.flow_limits.end()) throw InputError("no flow controller '" + flow + "' on this participant");
+    qos.publish_mode().kind = fdds::ASYNCHRONOUS_PUBLISH_MODE;
+    qos.publish_mode().flow_controller_name = limit->name.c_str();
   }
   auto* writer = publisher_->create_datawriter(topic, qos);
   if (!writer) throw InputError("cannot create a writer on '" + topic->get_name() + "' with profile '" + profile + "'");

@@ -9,6 +9,7 @@ std::string profile(TopicClass topic_class, DeliveryMode mode, const char* side)
     case TopicClass::Frames: return std::string("frames_") + to_string(mode) + "_" + side;
     case TopicClass::Chain: return std::string("chain_") + to_string(mode) + "_" + side;
     case TopicClass::Downlink: return std::string("downlink_") + to_string(mode) + "_" + side;
+    case TopicClass::Preview: return std::string("preview_") + side;
     case TopicClass::Health: return std::string("health_") + side;
     case TopicClass::State: return std::string("state_") + side;
   }

@@ -52,6 +52,25 @@ TEST(FrameConvert, ViewSharesTheSamplesPixelsAndValidatesTheSame) {
   EXPECT_NE(why.find("expected 527"), std::string::npos) << why;
 }
 
+TEST(FrameConvert, JpegPreviewDecodesToTheSameSizeAndCloseToThePixels) {
+  Frame in;
+  in.stream_id = "uav7";
+  in.index = 3;
+  in.image.create(48, 64, CV_8UC1);
+  for (int y = 0; y < in.image.rows; ++y) {
+    for (int x = 0; x < in.image.cols; ++x) in.image.at<uint8_t>(y, x) = static_cast<uint8_t>(2 * x + y);  // smooth
+  }
+  const msg::Frame sample = to_jpeg_msg(in, 90);
+  EXPECT_EQ(sample.encoding(), msg::Encoding::JPEG);
+  EXPECT_LT(sample.data().size(), in.image.total());  // compressed
+  std::string why;
+  const auto out = from_msg(sample, why);
+  ASSERT_TRUE(out) << why;
+  EXPECT_EQ(out->index, 3);
+  EXPECT_EQ(out->image.size(), in.image.size());
+  EXPECT_LT(cv::norm(out->image, in.image, cv::NORM_L1) / static_cast<double>(in.image.total()), 2.0);
+}
+
 TEST(FrameConvert, RejectsMalformedSamplesWithAReason) {
   msg::Frame sample = to_msg(random_frame(CV_8UC1));
   std::string why;

@@ -65,15 +65,15 @@ TEST(HealthTable, RespawnedProcessDoesNotGiveANegativeOrHugeRate) {
 TEST(HealthTable, PerTopicRatesInAndOutComeFromSuccessiveReports) {
   HealthTable table;
   auto first = report("downlink", 10, 0);
-  first.topics = {{"uavmot/downlink/tracks", 100, 150'000, 0, 0}, {"uavmot/tracks", 0, 0, 100, 600'000}};
+  first.topics = {{"uavmot/downlink/results", 100, 150'000, 0, 0}, {"uavmot/tracks", 0, 0, 100, 600'000}};
   table.update(first);
   auto second = report("downlink", 12, 0);
-  second.topics = {{"uavmot/downlink/tracks", 150, 250'000, 0, 0}, {"uavmot/tracks", 0, 0, 150, 900'000},
+  second.topics = {{"uavmot/downlink/results", 150, 250'000, 0, 0}, {"uavmot/tracks", 0, 0, 150, 900'000},
                    {"uavmot/health", 2, 500, 0, 0}};  // a topic new in this report: no rate yet
   table.update(second);
   const auto rows = table.rows(12 * kSecond);
   ASSERT_EQ(rows[0].topics.size(), 3u);
-  EXPECT_EQ(rows[0].topics[0].topic, "uavmot/downlink/tracks");
+  EXPECT_EQ(rows[0].topics[0].topic, "uavmot/downlink/results");
   EXPECT_DOUBLE_EQ(rows[0].topics[0].bytes_out_per_s, 50'000.0);
   EXPECT_DOUBLE_EQ(rows[0].topics[0].samples_out_per_s, 25.0);
   EXPECT_DOUBLE_EQ(rows[0].topics[1].bytes_in_per_s, 150'000.0);
@@ -81,14 +81,14 @@ TEST(HealthTable, PerTopicRatesInAndOutComeFromSuccessiveReports) {
   EXPECT_EQ(rows[0].topics[2].bytes_out_per_s, 0.0);
 
   const std::string text = format_table(rows);
-  EXPECT_NE(text.find("uavmot/downlink/tracks         out    50.0kB/s    25.0/s"), std::string::npos) << text;
+  EXPECT_NE(text.find("uavmot/downlink/results        out    50.0kB/s    25.0/s"), std::string::npos) << text;
   EXPECT_NE(text.find("uavmot/tracks                  in    150.0kB/s    25.0/s"), std::string::npos) << text;
   const auto j = to_json(rows);
   EXPECT_EQ(j[0]["topics"][0]["bytes_out"], 250'000);
   EXPECT_EQ(j[0]["topics"][1]["bytes_in_per_s"], 150'000.0);
 
   auto respawned = report("downlink", 13, 0, 200);  // counters from zero in a new process
-  respawned.topics = {{"uavmot/downlink/tracks", 1, 100, 0, 0}};
+  respawned.topics = {{"uavmot/downlink/results", 1, 100, 0, 0}};
   table.update(respawned);
   EXPECT_EQ(table.rows(13 * kSecond)[0].topics[0].bytes_out_per_s, 0.0);
 }

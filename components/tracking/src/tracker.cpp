@@ -77,6 +77,7 @@ Track to_output(const TrackRecord& record) {
   t.state = record.state;
   t.box = box_of(k.mean);
   t.velocity = velocity_of(k.mean);
+  round_to_float32(t);  // output only: the Kalman state keeps its doubles
   t.sigma_x = std::sqrt(std::max(0.0, k.covariance(kX, kX)));
   t.sigma_y = std::sqrt(std::max(0.0, k.covariance(kY, kY)));
   t.sigma_width = std::sqrt(std::max(0.0, k.covariance(kWidth, kWidth)));

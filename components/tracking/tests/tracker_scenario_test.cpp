@@ -84,6 +84,22 @@ TEST(TrackerScenario, VelocityIsRelativeToTheGround) {
   EXPECT_LT(worst, 0.15);  // px/frame; the camera moves ~1.3 px/frame
 }
 
+// Published boxes and velocities are float32 values, so the compact downlink carries them exactly
+// (the ground's files equal `uavmot process`'s byte for byte).
+TEST(TrackerScenario, PublishedBoxesAndVelocitiesAreFloat32Values) {
+  SyntheticScene scene({car(1, {100, 200}, {1.5, 0.3}), car(2, {300, 120}, {-0.7, 1.1})}, drifting_camera());
+  Tracker tracker;
+  size_t seen = 0;
+  for (int k = 1; k <= 40; ++k) {
+    const SyntheticFrame f = scene.next();
+    for (const Track& t : tracker.process(f.motion, f.segmentation).tracks) {
+      EXPECT_TRUE(is_float32_exact(t)) << "frame " << k << " track " << t.id;
+      ++seen;
+    }
+  }
+  EXPECT_GT(seen, 40u);
+}
+
 TEST(TrackerScenario, OvertakingKeepsIdentitiesThroughMergeAndSplit) {
   // Lane 1 fast, lane 2 slow, 5.5 px apart: the boxes come within the merge gap for many frames.
   SceneOptions opts;

@@ -16,6 +16,7 @@
 #include <map>
 #include <set>
 #include <string>
+#include <vector>
 
 #include "uavmot/core/chain_types.hpp"
 #include "uavmot/core/error.hpp"
@@ -40,6 +41,13 @@ struct RunSummary {
   std::map<std::string, double> stage_mean_ms;  // per layer, when known (uavmot process)
 };
 
+// A line of regions.txt as printed (printed_fixed with 3 decimals): axis-aligned bounds and
+// score. The downlink carries regions in this form, so the ground prints the same bytes.
+struct PrintedRegion {
+  int64_t x = 0, y = 0, width = 0, height = 0, score = 0;
+};
+PrintedRegion printed_region(const Region& region);  // throws InvalidArgument for non-finite numbers
+
 class ResultFilesWriter {
  public:
   explicit ResultFilesWriter(ResultFilesOptions options);  // throws InputError if the folder cannot be written
@@ -49,6 +57,8 @@ class ResultFilesWriter {
 
   void write_motion(const MotionEstimate& motion);
   void write_segmentation(const SegmentationResult& segmentation);
+  // regions.txt only (what the downlink carries of a segmentation).
+  void write_printed_regions(int64_t frame_index, const std::vector<PrintedRegion>& regions);
   void write_tracks(const TrackList& tracks);
   // Flushes and writes summary.json; further writes are errors.
   void close(RunSummary summary);

@@ -11,6 +11,8 @@
 namespace uavmot::dds {
 
 msg::Frame to_msg(const Frame& frame);
+// The frame as a JPEG (encoding JPEG, width/height of the image), e.g. for a preview.
+msg::Frame to_jpeg_msg(const Frame& frame, int quality);
 // The end-of-stream marker: no pixels, end_of_stream = true.
 msg::Frame end_of_stream_frame(const std::string& stream_id, int64_t last_index);
 

@@ -6,6 +6,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <vector>
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
@@ -19,6 +20,13 @@
 
 namespace uavmot::dds {
 
+// A Fast DDS flow controller (configured in C++: Fast DDS 2.9 has no XML for it): the writers
+// that name it send at most `bits_per_second` together, newest samples first to go when over.
+struct FlowLimit {
+  std::string name;
+  uint64_t bits_per_second = 0;
+};
+
 struct DdsOptions {
   int domain_id = 0;
   std::string profiles_file;                  // empty: $UAVMOT_QOS_PROFILES, then the installed/default file
@@ -27,6 +35,7 @@ struct DdsOptions {
   // "IP:PORT" of a Fast DDS Discovery Server (server id 0) to be a client of, for links without
   // multicast; empty: SIMPLE discovery (unless Fast DDS picks up $ROS_DISCOVERY_SERVER itself).
   std::string discovery_server;
+  std::vector<FlowLimit> flow_limits;
   DeliveryMode mode = DeliveryMode::Lossless;
 };
 
@@ -43,10 +52,13 @@ class Participant {
 
   const DdsOptions& options() const { return options_; }
 
+  // `flow`: the name of one of options().flow_limits; the writer then publishes asynchronously
+  // through that flow controller.
   template <class PubSubType>
-  std::unique_ptr<TopicWriter<PubSubType>> make_writer(const std::string& topic_name, TopicClass topic_class) {
+  std::unique_ptr<TopicWriter<PubSubType>> make_writer(const std::string& topic_name, TopicClass topic_class,
+                                                       const std::string& flow = "") {
     auto* topic = topic_for(topic_name, eprosima::fastdds::dds::TypeSupport(new PubSubType()));
-    auto* writer = create_writer(topic, writer_profile(topic_class, options_.mode));
+    auto* writer = create_writer(topic, writer_profile(topic_class, options_.mode), flow);
     return std::make_unique<TopicWriter<PubSubType>>(writer, topic_name);
   }
 
@@ -64,7 +76,8 @@ class Participant {
 
  private:
   eprosima::fastdds::dds::Topic* topic_for(const std::string& name, eprosima::fastdds::dds::TypeSupport type);
-  eprosima::fastdds::dds::DataWriter* create_writer(eprosima::fastdds::dds::Topic* topic, const std::string& profile);
+  eprosima::fastdds::dds::DataWriter* create_writer(eprosima::fastdds::dds::Topic* topic, const std::string& profile,
+                                                    const std::string& flow);
   eprosima::fastdds::dds::DataReader* create_reader(eprosima::fastdds::dds::Topic* topic, const std::string& profile);
 
   DdsOptions options_;

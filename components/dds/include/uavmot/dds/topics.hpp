@@ -11,17 +11,18 @@ inline constexpr const char* kSegmentationTopic = "uavmot/segmentation";
 inline constexpr const char* kTracksTopic = "uavmot/tracks";
 inline constexpr const char* kHealthTopic = "uavmot/health";
 inline constexpr const char* kTrackerStateTopic = "uavmot/tracker_state";
-// What crosses the air -> ground link (idl/downlink.idl, docs/deployment.md).
-inline constexpr const char* kDownlinkMotionTopic = "uavmot/downlink/motion";
-inline constexpr const char* kDownlinkRegionsTopic = "uavmot/downlink/regions";
-inline constexpr const char* kDownlinkTracksTopic = "uavmot/downlink/tracks";
+// What crosses the air -> ground link (idl/downlink.idl, docs/deployment.md): one sample per frame.
+inline constexpr const char* kDownlinkResultsTopic = "uavmot/downlink/results";
+// Optional JPEG preview of the frames (msg::Frame, encoding JPEG), paced by a flow controller.
+inline constexpr const char* kDownlinkPreviewTopic = "uavmot/downlink/preview";
 
 // lossless: nothing is dropped, slow readers hold back writers. live: newest sample wins.
 enum class DeliveryMode { Lossless, Live };
 DeliveryMode parse_delivery_mode(const std::string& name);  // "lossless" | "live"
 const char* to_string(DeliveryMode mode);
 
-enum class TopicClass { Frames, Chain, Downlink, Health, State };
+// Preview: best effort, newest only, in either mode; it never holds anything back.
+enum class TopicClass { Frames, Chain, Downlink, Preview, Health, State };
 
 // Names of the endpoint profiles in bringup/qos/uavmot_qos.xml, e.g. "frames_lossless_writer".
 std::string writer_profile(TopicClass topic_class, DeliveryMode mode);
