@@ -24,6 +24,7 @@ for t in "${targets[@]}"; do
   work="$dir/corpus/$t"
   mkdir -p "$work"
   cp -n tests/fuzz/corpus/"$t"/* "$work"/
+  if [[ -d tests/fuzz/regressions/$t ]]; then cp -n tests/fuzz/regressions/"$t"/* "$work"/; fi
   echo "fuzz: $t for ${seconds} s"
   if ! "$dir/fuzz/${t}_fuzz" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1 \
        -artifact_prefix="$dir/crashes/$t-" "$work" 2>"$dir/$t.log"; then
