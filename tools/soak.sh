@@ -5,7 +5,7 @@
 # respawned, when a component's frames in/out differ from FRAMES, or when a component's RSS grew
 # by more than UAVMOT_SOAK_MAX_GROWTH_MIB after the warm-up (the first 10% of the frames).
 #   tools/soak.sh [FRAMES] [OUT_DIR]      (defaults: 100000, out/soak)
-# Environment: UAVMOT_BUILD_DIR (build), UAVMOT_SOAK_DOMAIN (119), UAVMOT_SOAK_SIZE (320x240),
+# Environment: UAVMOT_BUILD_DIR (build), UAVMOT_SOAK_DOMAIN (119), UAVMOT_SOAK_SIZE (160x120),
 # UAVMOT_SOAK_MAX_GROWTH_MIB (16), UAVMOT_SOAK_INTERVAL (5 s between RSS samples).
 # Uses DDS on its domain: do not run it beside the integration tests (flock /work/integration.lock).
 set -euo pipefail
@@ -13,7 +13,7 @@ cd "$(dirname "$0")/.."
 frames=${1:-100000}
 out=${2:-out/soak}
 bin=$(pwd)/${UAVMOT_BUILD_DIR:-build}/bin
-size=${UAVMOT_SOAK_SIZE:-320x240}
+size=${UAVMOT_SOAK_SIZE:-160x120}
 [[ -x $bin/uavmot-launch ]] || { echo "soak: build first (bash tools/build.sh): no $bin/uavmot-launch" >&2; exit 2; }
 mkdir -p "$out"
 out=$(cd "$out" && pwd)
