@@ -12,8 +12,17 @@ function(uavmot_set_warnings target)
   endif()
 endfunction()
 
+# Sanitizers apply to every target (generated IDL code included); tools/sanitize.sh and
+# tools/fuzz.sh set them. UBSan aborts at its first finding instead of printing and carrying on,
+# so a test with undefined behaviour fails.
 if(UAVMOT_SANITIZE)
-  add_compile_options(-fsanitize=${UAVMOT_SANITIZE} -fno-omit-frame-pointer)
+  add_compile_options(-fsanitize=${UAVMOT_SANITIZE} -fno-omit-frame-pointer -g)
+  if(UAVMOT_SANITIZE MATCHES "undefined")
+    add_compile_options(-fno-sanitize-recover=all)
+  endif()
+  # GCC's flow analysis sees the sanitizers' instrumentation and reports std::regex and std::function
+  # internals as maybe-uninitialized (libstdc++ headers, not our code); off in sanitizer builds only.
+  add_compile_options($<$<CXX_COMPILER_ID:GNU>:-Wno-maybe-uninitialized>)
   add_link_options(-fsanitize=${UAVMOT_SANITIZE})
 endif()
 

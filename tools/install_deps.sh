@@ -13,6 +13,9 @@ packages=(
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libzstd-dev liblz4-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # fuzzing (tools/fuzz.sh): clang 14 with libFuzzer and the sanitizer runtimes; llvm-symbolizer for
+  # readable sanitizer stacks (GCC's ASan/UBSan/TSan runtimes for tools/sanitize.sh come with g++)
+  clang libclang-rt-14-dev llvm
   # integration tests: network namespaces, firewall rules, process tools
   iproute2 nftables procps psmisc python3
   # containers: podman (runc: crun cannot set ulimits here), podman-compose, debootstrap for the base image

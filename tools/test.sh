@@ -1,11 +1,38 @@
 #!/usr/bin/env bash
-# The README's test command: installs dependencies, builds, runs the whole test suite.
+# The README's test command (and CI's, via .ci/run): installs dependencies, builds, runs the whole
+# test suite, then the hardening stages (docs/developing.md): the whole suite under ASan + UBSan,
+# the threaded and DDS tests under TSan, and every fuzz target for a bounded time.
+# Locally, UAVMOT_SKIP_STAGES="asan tsan fuzz" (any of them) skips stages; CI sets nothing and runs all.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-bash tools/install_deps.sh
-bash tools/build.sh
-build_dir=${UAVMOT_BUILD_DIR:-build}
-# Integration tests start real Fast DDS processes; run them one at a time so they
-# do not compete for the two cores and shared-memory segments.
-ctest --test-dir "$build_dir" --output-on-failure -j 2 -LE serial
-ctest --test-dir "$build_dir" --output-on-failure -L serial
+skip=" ${UAVMOT_SKIP_STAGES:-} "
+fuzz_seconds=${UAVMOT_FUZZ_SECONDS:-20}
+timings=()
+stage() {  # name command...
+  local name=$1 start=$SECONDS
+  shift
+  if [[ $skip == *" $name "* ]]; then
+    echo "test.sh: stage $name skipped (UAVMOT_SKIP_STAGES)"
+    timings+=("$name: skipped")
+    return
+  fi
+  echo "test.sh: stage $name"
+  "$@"
+  timings+=("$name: $((SECONDS - start)) s")
+}
+
+tests() {
+  local build_dir=${UAVMOT_BUILD_DIR:-build}
+  # Integration tests start real Fast DDS processes; run them one at a time so they
+  # do not compete for the two cores and shared-memory segments.
+  ctest --test-dir "$build_dir" --output-on-failure -j 2 -LE serial
+  ctest --test-dir "$build_dir" --output-on-failure -L serial
+}
+
+stage deps bash tools/install_deps.sh
+stage build bash tools/build.sh
+stage tests tests
+stage asan bash tools/sanitize.sh address
+stage tsan bash tools/sanitize.sh thread
+stage fuzz bash tools/fuzz.sh "$fuzz_seconds"
+printf 'test.sh: %s\n' "${timings[@]}"

@@ -86,7 +86,14 @@ std::vector<ConfigNode> ConfigNode::children(const std::string& key) const {
 std::vector<std::string> ConfigNode::keys() const {
   std::vector<std::string> out;
   if (!node_.IsMap()) return out;
-  for (const auto& kv : node_) out.push_back(kv.first.as<std::string>());
+  for (const auto& kv : node_) {
+    // A complex key ("? [a, b]" or "? {a: 1}") has no name: a conversion to string would throw YAML's own exception.
+    if (!kv.first.IsScalar()) {
+      const std::string where = path_.empty() ? "" : ": " + path_;
+      throw InputError(file_ + ":" + std::to_string(kv.first.Mark().line + 1) + where + ": keys must be plain names");
+    }
+    out.push_back(kv.first.Scalar());
+  }
   return out;
 }
 

@@ -54,6 +54,21 @@ TEST(YamlConfig, SyntaxErrorsAndMissingFilesAreInputErrors) {
   EXPECT_THROW(ConfigNode::load_string("- 1\n- 2\n", "list.yaml"), InputError);
 }
 
+TEST(YamlConfig, ComplexKeysAreInputErrors) {
+  // Found by config_fuzz (tests/fuzz/regressions/config/complex_key): "? key" makes a key that is
+  // itself a node; keys() converted it to a string and yaml-cpp threw TypedBadConversion.
+  const auto root = ConfigNode::load_string("motion:\n  max_features: 10\n? [a, b]\n: 3\n", "c.yaml");
+  try {
+    root.expect_only({"motion"});
+    FAIL() << "expected an error";
+  } catch (const InputError& e) {
+    EXPECT_STREQ(e.what(), "c.yaml:3: keys must be plain names");
+  }
+  const auto nested = ConfigNode::load_string("motion:\n  ? {x: 1}\n  : 2\n", "c.yaml");
+  EXPECT_THROW(nested.child("motion").keys(), InputError);
+  EXPECT_EQ(ConfigNode::load_string("? plain\n: 1\n", "c.yaml").keys(), std::vector<std::string>{"plain"});
+}
+
 TEST(YamlConfig, ChoicesAreValidated) {
   const auto root = ConfigNode::load_string("mode: sideways\n", "c.yaml");
   std::string mode = "live";

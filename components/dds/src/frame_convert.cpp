@@ -74,10 +74,19 @@ std::optional<Frame> convert(const msg::Frame& sample, std::string& why, uint8_t
     return std::nullopt;
   }
   if (channels == 0) {  // JPEG
-    frame.image = cv::imdecode(sample.data(), cv::IMREAD_UNCHANGED);
+    // imdecode asserts (throws cv::Exception) on an empty buffer and on some corrupt streams.
+    try {
+      if (!sample.data().empty()) frame.image = cv::imdecode(sample.data(), cv::IMREAD_UNCHANGED);
+    } catch (const cv::Exception&) {
+      frame.image.release();
+    }
     if (frame.image.empty() || frame.image.cols != static_cast<int>(sample.width()) ||
         frame.image.rows != static_cast<int>(sample.height())) {
       why = "JPEG payload does not decode to the announced size";
+      return std::nullopt;
+    }
+    if (frame.image.type() != CV_8UC1 && frame.image.type() != CV_8UC3) {  // the chain takes mono8 or bgr8
+      why = "JPEG payload decodes to an image that is neither mono8 nor bgr8";
       return std::nullopt;
     }
     return frame;

@@ -21,6 +21,9 @@ void HealthReporter::frame_out(int64_t frame_index, double processing_ms, double
   window_processing_ms_ += processing_ms;
   window_latency_ms_ += latency_ms;
   state_ = msg::ComponentState::RUNNING;
+  // Report from here too: a busy node's take loop may not return to its outer loop (where it also
+  // ticks) for as long as input keeps arriving, and its reports would stop exactly when it is the bottleneck.
+  tick();
 }
 
 void HealthReporter::tick() {

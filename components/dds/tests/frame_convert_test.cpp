@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
 
 namespace uavmot::dds {
 namespace {
@@ -88,6 +89,37 @@ TEST(FrameConvert, RejectsMalformedSamplesWithAReason) {
 
   sample = to_msg(random_frame(CV_8UC1));
   sample.encoding(msg::Encoding::JPEG);  // raw bytes announced as JPEG
+  EXPECT_FALSE(from_msg(sample, why));
+}
+
+TEST(FrameConvert, JpegDecodesToTheAnnouncedSize) {
+  for (int type : {CV_8UC1, CV_8UC3}) {
+    const Frame in = random_frame(type);
+    msg::Frame sample = to_msg(in);
+    sample.encoding(msg::Encoding::JPEG);
+    cv::imencode(".jpg", in.image, sample.data());
+    std::string why;
+    const auto out = from_msg(sample, why);
+    ASSERT_TRUE(out) << why;
+    EXPECT_EQ(out->image.type(), type);
+    EXPECT_EQ(out->image.size(), in.image.size());
+    sample.width(sample.width() + 1);
+    EXPECT_FALSE(from_msg(sample, why));
+  }
+}
+
+TEST(FrameConvert, EmptyOrTruncatedJpegIsRejectedNotThrown) {
+  // Found by sample_validators_fuzz (tests/fuzz/regressions/sample_validators/empty_jpeg_frame):
+  // an empty JPEG payload made cv::imdecode throw out of the motion node's receive path.
+  msg::Frame sample = to_msg(random_frame(CV_8UC1));
+  sample.encoding(msg::Encoding::JPEG);
+  sample.data().clear();
+  std::string why;
+  EXPECT_FALSE(from_msg(sample, why));
+  EXPECT_NE(why.find("JPEG"), std::string::npos) << why;
+
+  cv::imencode(".jpg", random_frame(CV_8UC1).image, sample.data());
+  sample.data().resize(20);  // SOI and part of a header
   EXPECT_FALSE(from_msg(sample, why));
 }
 

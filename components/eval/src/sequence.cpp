@@ -92,7 +92,8 @@ SequenceInfo load_sequence_info(const std::string& file) {
     };
     values[trim(line.substr(0, eq))] = trim(line.substr(eq + 1));
   }
-  const auto number = [&](const char* key, bool required, double fallback) {
+  // `max` keeps the integer casts below defined (a value beyond the target type is undefined).
+  const auto number = [&](const char* key, bool required, double fallback, double max) {
     auto it = values.find(key);
     if (it == values.end()) {
       if (required) throw InputError(file + ": missing '" + key + "'");
@@ -102,15 +103,18 @@ SequenceInfo load_sequence_info(const std::string& file) {
     const double v = std::strtod(it->second.c_str(), &end);
     if (it->second.empty() || *end != '\0' || !std::isfinite(v) || v < 0)
       throw InputError(file + ": '" + key + "' is not a valid number: '" + it->second + "'");
+    if (v > max) throw InputError(file + ": '" + key + "' is larger than " + fmt::format("{:g}", max) + ": '" + it->second + "'");
     return v;
   };
+  constexpr double kMaxFrames = 1e9;
+  constexpr double kMaxSide = 1 << 20;
   SequenceInfo info;
   info.name = values.count("name") ? values["name"] : fs::path(file).parent_path().filename().string();
-  info.length = static_cast<int64_t>(number("seqLength", true, 0));
-  info.width = static_cast<int>(number("imWidth", true, 0));
-  info.height = static_cast<int>(number("imHeight", true, 0));
-  info.fps = number("frameRate", false, 25.0);
-  info.gsd_m = number("gsd", false, 0.0);
+  info.length = static_cast<int64_t>(number("seqLength", true, 0, kMaxFrames));
+  info.width = static_cast<int>(number("imWidth", true, 0, kMaxSide));
+  info.height = static_cast<int>(number("imHeight", true, 0, kMaxSide));
+  info.fps = number("frameRate", false, 25.0, 1e6);
+  info.gsd_m = number("gsd", false, 0.0, 1e6);
   if (info.length < 1) throw InputError(file + ": seqLength must be at least 1");
   return info;
 }

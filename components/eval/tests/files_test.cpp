@@ -124,6 +124,24 @@ TEST_F(Files, BrokenGroundTruthIsAnInputError) {
   EXPECT_THROW(load_sequence_info((dir_ / "seq" / "seqinfo.ini").string()), InputError);
 }
 
+TEST_F(Files, HugeSeqinfoNumbersAreInputErrorsNotOverflows) {
+  // Found by eval_files_fuzz (tests/fuzz/regressions/eval_files/seqinfo_width_beyond_int): an
+  // imWidth of 1e89 was cast to int, which is undefined behaviour.
+  const std::string file = (dir_ / "seq" / "seqinfo.ini").string();
+  for (const char* line : {"imWidth=1e89\nimHeight=240\nseqLength=3\n", "imWidth=320\nimHeight=3000000000\nseqLength=3\n",
+                           "imWidth=320\nimHeight=240\nseqLength=1e19\n"}) {
+    write("seq/seqinfo.ini", std::string("[Sequence]\n") + line);
+    try {
+      load_sequence_info(file);
+      ADD_FAILURE() << line;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("is larger than"), std::string::npos) << e.what();
+    }
+  }
+  write("seq/seqinfo.ini", "[Sequence]\nimWidth=1048576\nimHeight=240\nseqLength=1000000000\n");
+  EXPECT_EQ(load_sequence_info(file).width, 1 << 20);
+}
+
 TEST_F(Files, SimulatedSequenceScoresPerfectlyAgainstItsOwnTruth) {
   sim::Scenario s = sim::preset_scenario("paper");
   s.frames = 4;

@@ -20,7 +20,7 @@ class HealthReporter {
                  std::chrono::milliseconds period = std::chrono::seconds(1));
 
   void frame_in() { ++frames_in_; }
-  // One frame done: how long it took and how old its data was when published.
+  // One frame done: how long it took and how old its data was when published. Reports when due (tick).
   void frame_out(int64_t frame_index, double processing_ms, double latency_ms = 0.0);
   void dropped(uint64_t count = 1) { dropped_ += count; }
   void invalid_sample() { ++invalid_; }

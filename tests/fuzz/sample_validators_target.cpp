@@ -1,4 +1,4 @@
-// libFuzzer: arbitrary bytes as a CDR sample of each chain topic, then the receive-side validation.
+// Fuzz target: arbitrary bytes as a CDR sample of each chain topic, then the receive-side validation.
 // Whatever arrives on the wire, deserialization and validation may reject it but must not crash.
 
 #include <cstddef>
@@ -7,6 +7,7 @@
 
 #include <fastdds/rtps/common/SerializedPayload.h>
 
+#include "fuzz_targets.hpp"
 #include "framePubSubTypes.h"
 #include "motionPubSubTypes.h"
 #include "segmentationPubSubTypes.h"
@@ -34,7 +35,9 @@ void check(const uint8_t* data, size_t size) {
 
 }  // namespace
 
-extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
+namespace uavmot::fuzz {
+
+int sample_validators(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
   switch (data[0] % 4) {
     case 0: check<uavmot::msg::FramePubSubType>(data + 1, size - 1); break;
@@ -44,3 +47,5 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
   }
   return 0;
 }
+
+}  // namespace uavmot::fuzz

@@ -1,0 +1,17 @@
+#pragma once
+// The fuzz targets as plain functions: libfuzzer_main.cpp makes each a libFuzzer binary
+// (tools/fuzz.sh), and fuzz_replay_test runs the committed seeds and every input that once
+// crashed (tests/fuzz/regressions/<target>/) through the same function in the normal build.
+// Each returns 0; anything else that escapes (a crash, a foreign exception) is a finding.
+
+#include <cstddef>
+#include <cstdint>
+
+namespace uavmot::fuzz {
+
+int mcap_reader(const uint8_t* data, size_t size);        // MCAP bytes -> Reader
+int sample_validators(const uint8_t* data, size_t size);  // CDR bytes -> chain samples -> from_msg
+int config(const uint8_t* data, size_t size);             // YAML text -> ConfigNode, scene, launch profile
+int eval_files(const uint8_t* data, size_t size);         // first byte picks the file kind, rest is its text
+
+}  // namespace uavmot::fuzz
