@@ -2,6 +2,7 @@
 // losslessly as fast as the subscribers take it (docs/record.md). `--info` describes the file.
 
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <memory>
@@ -165,8 +166,8 @@ int replay_main(int argc, char** argv) {
         }
       }
       const auto& stats = reader.statistics();
-      filter.start_time = stats.message_start_time + static_cast<uint64_t>(start_offset_s * 1e9);
-      if (duration_s > 0) filter.end_time = filter.start_time + static_cast<uint64_t>(duration_s * 1e9);
+      filter.start_time = stats.message_start_time + static_cast<uint64_t>(std::llround(start_offset_s * 1e9));
+      if (duration_s > 0) filter.end_time = filter.start_time + static_cast<uint64_t>(std::llround(duration_s * 1e9));
       spdlog::info("replaying {} topic(s) of {} ({}, {})", chosen.size(), file, dds::to_string(node.dds.mode),
                    lossless ? "as fast as the subscribers take it" : fmt::format("rate {}", rate));
 
