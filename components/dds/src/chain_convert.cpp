@@ -2,8 +2,13 @@
 
 #include <cmath>
 
+#include "sample_checks.hpp"
+
 namespace uavmot::dds {
 namespace {
+
+using detail::bad_index;
+using detail::sane;
 
 msg::OrientedBox box_to_msg(const OrientedBox& b) {
   msg::OrientedBox m;
@@ -17,24 +22,12 @@ msg::OrientedBox box_to_msg(const OrientedBox& b) {
 
 OrientedBox box_from_msg(const msg::OrientedBox& m) { return {m.cx(), m.cy(), m.width(), m.length(), m.angle_deg()}; }
 
-// A box anyone could draw: finite, non-negative size, not absurdly large.
-bool sane(const OrientedBox& b) {
-  return is_finite(b) && b.width >= 0.0 && b.length >= 0.0 && b.width < 1e5 && b.length < 1e5 &&
-         std::abs(b.cx) < 1e6 && std::abs(b.cy) < 1e6;
-}
-
 bool finite(double v) { return std::isfinite(v); }
 
 template <class Seq>
 bool too_long(const Seq& seq, size_t max, const char* what, std::string& why) {
   if (seq.size() <= max) return false;
   why = std::string(what) + ": " + std::to_string(seq.size()) + " entries exceed the limit of " + std::to_string(max);
-  return true;
-}
-
-bool bad_index(int64_t index, std::string& why) {
-  if (index >= 1) return false;
-  why = "frame index " + std::to_string(index) + " < 1";
   return true;
 }
 

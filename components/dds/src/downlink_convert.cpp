@@ -5,8 +5,9 @@
 
 #include "uavmot/core/error.hpp"
 #include "uavmot/core/result_files.hpp"
-
 #include "uavmot/dds/chain_convert.hpp"
+
+#include "sample_checks.hpp"
 
 namespace uavmot::dds {
 namespace {
@@ -48,11 +49,7 @@ std::optional<msg::CompactRegion> region_to_msg(const Region& r) {
   return m;
 }
 
-// The same limits as the full samples (chain_convert.cpp).
-bool sane(const OrientedBox& b) {
-  return is_finite(b) && b.width >= 0.0 && b.length >= 0.0 && b.width < 1e5 && b.length < 1e5 &&
-         std::abs(b.cx) < 1e6 && std::abs(b.cy) < 1e6;
-}
+using detail::sane;  // the same limits as the full samples
 
 int64_t capture_time_of(const FrameParts& p) {
   if (p.tracks) return p.tracks->capture_time_ns;
@@ -111,10 +108,7 @@ msg::FrameResults to_downlink_msg(const std::string& stream_id, int64_t frame_in
 }
 
 std::optional<GroundFrame> from_msg(const msg::FrameResults& m, std::string& why) {
-  if (m.frame_index() < 1) {
-    why = "frame index " + std::to_string(m.frame_index()) + " < 1";
-    return std::nullopt;
-  }
+  if (detail::bad_index(m.frame_index(), why)) return std::nullopt;
   if (m.regions().size() > kMaxRegions || m.tracks().size() > kMaxTracks) {
     why = std::to_string(m.regions().size()) + " regions / " + std::to_string(m.tracks().size()) + " tracks exceed the limits";
     return std::nullopt;
