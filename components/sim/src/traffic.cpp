@@ -146,14 +146,25 @@ void Traffic::add_scripted(cv::Point2d image_centre_m) {
       throw InputError(name + ".road " + std::to_string(script.road) + ": the road network has " +
                        std::to_string(network_.roads.size()) + " roads (0 = main)");
     const Road& road = network_.roads[script.road];
-    if (script.lane >= road.lanes_per_direction)
-      throw InputError(name + ".lane " + std::to_string(script.lane) + ": road " + std::to_string(script.road) + " has " +
-                       std::to_string(road.lanes_per_direction) + " lane(s) per direction");
-    // Arc length of the centreline point nearest the image centre.
+    auto check_lane = [&](int lane, const std::string& key) {
+      if (lane >= road.lanes_per_direction)
+        throw InputError(name + key + " " + std::to_string(lane) + ": road " + std::to_string(script.road) + " has " +
+                         std::to_string(road.lanes_per_direction) + " lane(s) per direction");
+    };
+    check_lane(script.lane, ".lane");
+    for (size_t k = 0; k < script.lane_changes.size(); ++k)
+      check_lane(script.lane_changes[k].lane, ".lane_changes[" + std::to_string(k) + "].lane");
+    // Arc length, in this vehicle's direction of travel, of the centreline point nearest the image centre.
     size_t nearest = 0;
-    for (size_t p = 1; p < road.points.size(); ++p)
-      if (cv::norm(road.points[p] - image_centre_m) < cv::norm(road.points[nearest] - image_centre_m)) nearest = p;
-    const double centre_s = road.arc[nearest];
+    double nearest_m = cv::norm(road.points[0] - image_centre_m);
+    for (size_t p = 1; p < road.points.size(); ++p) {
+      const double d = cv::norm(road.points[p] - image_centre_m);
+      if (d < nearest_m) {
+        nearest_m = d;
+        nearest = p;
+      }
+    }
+    const double centre_s = script.direction > 0 ? road.arc[nearest] : road.length() - road.arc[nearest];
     Vehicle v;
     v.internal_id = next_id_++;
     v.script = static_cast<int>(i);
@@ -168,11 +179,11 @@ void Traffic::add_scripted(cv::Point2d image_centre_m) {
     v.direction = script.direction;
     v.lane = script.lane;
     v.lateral_m = lane_offset(road, v.lane);
-    v.s_m = (script.direction > 0 ? centre_s : road.length() - centre_s) + script.start_m;
+    v.s_m = centre_s + script.start_m;
     if (v.s_m < v.length_m / 2.0 || v.s_m > road.length() - v.length_m / 2.0)
       throw InputError(name + ".start_m " + std::to_string(script.start_m) + " is off its road (it runs " +
-                       std::to_string(-(script.direction > 0 ? centre_s : road.length() - centre_s)) + " to " +
-                       std::to_string(script.direction > 0 ? road.length() - centre_s : centre_s) + " m from the image centre)");
+                       std::to_string(-centre_s) + " to " + std::to_string(road.length() - centre_s) +
+                       " m from the image centre)");
     v.speed_mps = v.desired_speed_mps = scripted_speed(script.speed, 0.0);
     update_pose(v);
     vehicles_.push_back(v);
@@ -184,7 +195,7 @@ void Traffic::advance_scripted(Vehicle& v, double dt) const {
   const double t = time_ - script_start_s_;
   // Lane changes begin at their time; the lateral motion is the traffic model's (in step()).
   if (v.next_lane_change < script.lane_changes.size() && t >= script.lane_changes[v.next_lane_change].at_s) {
-    const int lane = std::min(script.lane_changes[v.next_lane_change].lane, network_.roads[v.road].lanes_per_direction - 1);
+    const int lane = script.lane_changes[v.next_lane_change].lane;  // checked against the road in add_scripted()
     ++v.next_lane_change;
     if (lane != v.lane) {
       v.lane_change_from_m = v.lateral_m;

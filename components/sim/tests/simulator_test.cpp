@@ -362,6 +362,14 @@ TEST(Simulator, ScriptOnARoadTheNetworkLacksIsAnInputError) {
   car.road = 0;
   car.start_m = 5000.0;
   EXPECT_THROW(run(scripted_only({car}, 2), 1), InputError);
+  car.start_m = 0.0;
+  car.lane_changes = {{1.0, 3}};  // the paper preset's main road has two lanes per direction
+  try {
+    run(scripted_only({car}, 2), 1);
+    FAIL() << "expected InputError";
+  } catch (const InputError& e) {
+    EXPECT_NE(std::string(e.what()).find("scripted[0].lane_changes[0].lane 3"), std::string::npos) << e.what();
+  }
 }
 
 }  // namespace
