@@ -128,19 +128,26 @@ void expect_common_quality(const Flight& f) {
   EXPECT_LE(f.eval.at("completeness").at("over_segmented_rate").get<double>(), 0.02);
 }
 
+// Every vehicle stays on one track from kConfirmFrames on and is covered in >= 97 % of those
+// frames; `ids` gets each vehicle's track.
+void expect_one_track_each(const Flight& f, std::set<int64_t>& ids) {
+  for (const auto& [truth, timeline] : f.timelines) {
+    const auto tracks = tracks_between(timeline, kConfirmFrames, f.frames);
+    ASSERT_EQ(tracks.size(), 1u) << "vehicle " << truth << " changed track: " << describe(timeline);
+    ids.insert(tracks.begin()->first);
+    EXPECT_GE(coverage(timeline, kConfirmFrames, f.frames), 0.97) << describe(timeline);
+  }
+}
+
 // The faster car overtakes: for about 2 s the two drive side by side 10 px apart and form one
 // region. Each keeps its track through the merge and after the split.
 TEST(ScriptedFlights, OvertakingCarsKeepTheirIdentitiesThroughMergeAndSplit) {
   const Flight f = fly("overtaking");
   ASSERT_EQ(f.timelines.size(), 2u);
   std::set<int64_t> ids;
-  for (const auto& [truth, timeline] : f.timelines) {
-    const auto tracks = tracks_between(timeline, kConfirmFrames, f.frames);
-    ASSERT_EQ(tracks.size(), 1u) << "vehicle " << truth << " changed track: " << describe(timeline);
-    ids.insert(tracks.begin()->first);
-    EXPECT_GE(coverage(timeline, kConfirmFrames, f.frames), 0.97) << describe(timeline);
+  ASSERT_NO_FATAL_FAILURE(expect_one_track_each(f, ids));
+  for (const auto& [truth, timeline] : f.timelines)
     EXPECT_EQ(coverage(timeline, 125, 180), 1.0) << "side by side: " << describe(timeline);
-  }
   EXPECT_EQ(ids.size(), 2u) << "both cars on one track";
   expect_common_quality(f);
 }
@@ -150,12 +157,7 @@ TEST(ScriptedFlights, ConvoyOfFourIsTrackedAsFour) {
   const Flight f = fly("convoy");
   ASSERT_EQ(f.timelines.size(), 4u);
   std::set<int64_t> ids;
-  for (const auto& [truth, timeline] : f.timelines) {
-    const auto tracks = tracks_between(timeline, kConfirmFrames, f.frames);
-    ASSERT_EQ(tracks.size(), 1u) << "vehicle " << truth << ": " << describe(timeline);
-    ids.insert(tracks.begin()->first);
-    EXPECT_GE(coverage(timeline, kConfirmFrames, f.frames), 0.97) << describe(timeline);
-  }
+  ASSERT_NO_FATAL_FAILURE(expect_one_track_each(f, ids));
   EXPECT_EQ(ids.size(), 4u);
   expect_common_quality(f);
   EXPECT_GE(f.eval.at("completeness").at("correct_rate").get<double>(), 0.95);
