@@ -8,11 +8,13 @@
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
 #include <fastdds/rtps/flowcontrol/FlowControllerDescriptor.hpp>
+#include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
 #include <unistd.h>
 
+#include "shm_ports.hpp"
 #include "uavmot/core/error.hpp"
 
 namespace uavmot::dds {
@@ -58,6 +60,14 @@ void use_discovery_server(fdds::DomainParticipantQos& qos, const std::string& ad
   discovery.discoveryProtocol = rtps::DiscoveryProtocol_t::CLIENT;
   discovery.m_DiscoveryServers.push_back(server);
 }
+
+bool uses_shared_memory(const fdds::DomainParticipantQos& qos) {
+  if (qos.transport().use_builtin_transports) return true;  // Fast DDS's builtins include shared memory
+  for (const auto& transport : qos.transport().user_transports) {
+    if (std::dynamic_pointer_cast<eprosima::fastdds::rtps::SharedMemTransportDescriptor>(transport)) return true;
+  }
+  return false;
+}
 }  // namespace
 
 std::string default_profiles_file() {
@@ -78,6 +88,10 @@ Participant::Participant(DdsOptions options) : options_(std::move(options)) {
   }
   qos.name(options_.participant_name + "@" + std::to_string(::getpid()));
   if (!options_.discovery_server.empty()) use_discovery_server(qos, options_.discovery_server);
+  if (qos.wire_protocol().participant_id < 0 && uses_shared_memory(qos)) {
+    // Never take over the ports of a crashed process (see shm_ports.hpp).
+    qos.wire_protocol().participant_id = fresh_participant_id(options_.domain_id);
+  }
   for (const FlowLimit& limit : options_.flow_limits) {
     auto descriptor = std::make_shared<eprosima::fastdds::rtps::FlowControllerDescriptor>();
     descriptor->name = limit.name.c_str();  // options_ lives as long as the participant
