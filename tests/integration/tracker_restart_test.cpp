@@ -1,6 +1,7 @@
 // The tracking component is SIGKILLed in the middle of a `paper` sequence; the launcher respawns it,
-// it restores its saved state, and the tracks go on with the same ids. Scored against ground truth,
-// the run loses at most 1 point of MOTA against an undisturbed one.
+// it restores its saved state, gets what was published while it was down, and the tracks go on
+// with the same ids: byte-identical to an undisturbed run (issue 10 asks for at most 1 point of
+// MOTA lost; nothing is).
 
 #include <signal.h>
 
@@ -117,6 +118,9 @@ TEST(TrackerRestart, SigkilledTrackerContinuesWithTheSameTrackIds) {
   std::printf("MOTA undisturbed %.4f, killed at frame %d %.4f; ids kept %d/%d\n", mota_undisturbed, kill_frame,
               mota_killed, kept, compared);
   EXPECT_GE(mota_killed, mota_undisturbed - 0.01);
+  EXPECT_EQ(testing::read_file(root + "/killed/tracks.txt"), testing::read_file(root + "/undisturbed/tracks.txt"))
+      << "the killed run's tracks differ from the undisturbed run's";
+  EXPECT_EQ(testing::read_file(root + "/killed/tracks_obb.csv"), testing::read_file(root + "/undisturbed/tracks_obb.csv"));
 }
 
 }  // namespace

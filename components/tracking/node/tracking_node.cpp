@@ -68,23 +68,27 @@ int tracking_main(int argc, char** argv) {
 
       using Node = dds::PairedNode<msg::MotionEstimatePubSubType, msg::SegmentationPubSubType, msg::TrackListPubSubType,
                                    MotionEstimate, SegmentationResult>;
+      // With saved state, also take what the upstream writers published while this process was down.
+      const auto inputs = state_dir.empty() ? dds::TopicClass::Chain : dds::TopicClass::ChainResume;
       Node paired(participant,
-                  {"tracking", dds::kMotionTopic, dds::kSegmentationTopic, dds::kTracksTopic, dds::TopicClass::Chain,
-                   dds::TopicClass::Chain, streams, node.wait_subscribers},
+                  {"tracking", dds::kMotionTopic, dds::kSegmentationTopic, dds::kTracksTopic, inputs, inputs, streams,
+                   node.wait_subscribers},
                   [&](const std::string& stream, int64_t index, const MotionEstimate& motion,
                       const SegmentationResult& segmentation) -> std::optional<msg::TrackList> {
                     StreamTracker& s = tracker_for(stream);
                     if (index <= s.restored_frame) return std::nullopt;  // already in the restored state
                     s.tracker.set_image_size(motion.image_width, motion.image_height);
-                    auto tracks = dds::to_msg(s.tracker.process(motion, segmentation));
-                    if (!state_dir.empty()) {
-                      auto snapshot = tracking::to_msg(s.tracker.state(), stream, index);
-                      if (!tracking::save_snapshot(snapshot, state_file(stream))) {
-                        spdlog::warn("cannot write tracker state '{}'", state_file(stream));
-                      }
-                      state_out->write(snapshot);
+                    return dds::to_msg(s.tracker.process(motion, segmentation));
+                  },
+                  // The state is saved once the frame's tracks are out: a crash in between makes the
+                  // respawned tracker redo that frame, and the sink skips the repeat.
+                  [&](const std::string& stream, int64_t index) {
+                    if (state_dir.empty()) return;
+                    auto snapshot = tracking::to_msg(trackers.at(stream).tracker.state(), stream, index);
+                    if (!tracking::save_snapshot(snapshot, state_file(stream))) {
+                      spdlog::warn("cannot write tracker state '{}'", state_file(stream));
                     }
-                    return tracks;
+                    state_out->write(snapshot);
                   });
       return paired.run();
     };

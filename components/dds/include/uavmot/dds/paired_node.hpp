@@ -24,6 +24,9 @@ class PairedNode {
  public:
   // Returns the sample to publish, or nullopt to publish nothing for this pair.
   using Process = std::function<std::optional<typename PubOut::type>(const std::string& stream, int64_t index, const A&, const B&)>;
+  // Called after the sample of (stream, index) was published (e.g. to save state only once its
+  // output is out: a restart then redoes at most a frame whose output readers may already have).
+  using Published = std::function<void(const std::string& stream, int64_t index)>;
 
   struct Spec {
     std::string component;
@@ -33,7 +36,7 @@ class PairedNode {
     int required_readers = 0;  // lossless: readers of the output to wait for
   };
 
-  PairedNode(Participant& participant, Spec spec, Process process)
+  PairedNode(Participant& participant, Spec spec, Process process, Published published = {})
       : spec_(std::move(spec)),
         mode_(participant.options().mode),
         reader_a_(participant.make_reader<PubA>(spec_.input_a, spec_.class_a)),
@@ -41,7 +44,8 @@ class PairedNode {
         writer_(participant.make_writer<PubOut>(spec_.output, TopicClass::Chain)),
         health_(participant, spec_.component, "*"),
         ends_(spec_.streams),
-        process_(std::move(process)) {
+        process_(std::move(process)),
+        published_(std::move(published)) {
     if (mode_ == DeliveryMode::Lossless) writer_->set_required_readers(spec_.required_readers);
     health_.watch(*reader_a_);
     health_.watch(*reader_b_);
@@ -117,6 +121,7 @@ class PairedNode {
       if (!out) continue;
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
       if (!publish(*writer_, *out, mode_)) health_.dropped();
+      if (published_) published_(id, pair->index);
       health_.frame_out(pair->index, ms, latency_ms_since(out->capture_time_ns()));
       health_.set_bytes_out(writer_->bytes_sent());
     }
@@ -142,6 +147,7 @@ class PairedNode {
   StreamEnds ends_;
   RejectLog rejects_;
   Process process_;
+  Published published_;
   std::map<std::string, StreamState> streams_;
   typename PubA::type sample_a_;
   typename PubB::type sample_b_;

@@ -22,7 +22,10 @@ DeliveryMode parse_delivery_mode(const std::string& name);  // "lossless" | "liv
 const char* to_string(DeliveryMode mode);
 
 // Preview: best effort, newest only, in either mode; it never holds anything back.
-enum class TopicClass { Frames, Chain, Downlink, Preview, Health, State };
+// ChainResume: a chain topic read by a component that restores its state after a restart (the
+// tracker): in lossless mode its reader also gets the writer's recent history, so the samples
+// published while it was down are not lost to it. Writers are the same as for Chain.
+enum class TopicClass { Frames, Chain, ChainResume, Downlink, Preview, Health, State };
 
 // Names of the endpoint profiles in bringup/qos/uavmot_qos.xml, e.g. "frames_lossless_writer".
 std::string writer_profile(TopicClass topic_class, DeliveryMode mode);
