@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 
 #include <opencv2/imgproc.hpp>
 
+#include "binary_mask.hpp"
 #include "uavmot/core/error.hpp"
 
 namespace uavmot::segmentation {
@@ -13,11 +15,30 @@ namespace {
 // The rectangle with the same area moments as the filled mask: a uniformly filled L x W
 // rectangle has variance L^2 / 12 along its length; sampling it on the pixel grid adds each
 // pixel's own 1/12 in every direction, which is removed, so rotated shapes are not inflated.
+// The moments are summed here (as cv::moments(mask, true) does, exactly, without its set-up cost).
 cv::RotatedRect moment_box(const cv::Mat& mask) {
-  const cv::Moments m = cv::moments(mask, true);
-  if (m.m00 <= 0.0) return {};
-  const double cx = m.m10 / m.m00, cy = m.m01 / m.m00;
-  const double a = m.mu20 / m.m00, b = m.mu11 / m.m00, c = m.mu02 / m.m00;
+  double m00 = 0, m10 = 0, m01 = 0, m20 = 0, m11 = 0, m02 = 0;
+  for (int y = 0; y < mask.rows; ++y) {
+    const uchar* row = mask.ptr<uchar>(y);
+    // Integer sums per row are exact; doubles across rows as in OpenCV.
+    int64_t n = 0, sx = 0, sxx = 0;
+    for (int x = 0; x < mask.cols; ++x) {
+      if (row[x] == 0) continue;
+      ++n;
+      sx += x;
+      sxx += static_cast<int64_t>(x) * x;
+    }
+    const double yd = y;
+    m00 += static_cast<double>(n);
+    m10 += static_cast<double>(sx);
+    m20 += static_cast<double>(sxx);
+    m01 += static_cast<double>(n) * yd;
+    m11 += static_cast<double>(sx) * yd;
+    m02 += static_cast<double>(n) * yd * yd;
+  }
+  if (m00 <= 0.0) return {};
+  const double cx = m10 / m00, cy = m01 / m00;
+  const double a = (m20 - cx * m10) / m00, b = (m11 - cx * m01) / m00, c = (m02 - cy * m01) / m00;
   const double mean = 0.5 * (a + c), diff = std::sqrt(0.25 * (a - c) * (a - c) + b * b);
   const double major = mean + diff, minor = std::max(0.0, mean - diff);
   const double angle = 0.5 * std::atan2(2.0 * b, a - c) * 180.0 / 3.14159265358979323846;
@@ -102,25 +123,32 @@ Blob fit_component(const cv::Mat& acc, const cv::Mat& labels, int label, const c
       }
     }
   }
-  if (p.closing_size_px > 1) {
-    const cv::Mat element = cv::getStructuringElement(cv::MORPH_RECT, cv::Size(p.closing_size_px, p.closing_size_px));
-    cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, element);
-  }
-  std::vector<std::vector<cv::Point>> contours;
-  cv::findContours(mask, contours, cv::RETR_EXTERNAL, cv::CHAIN_APPROX_NONE);
+  close_binary(mask, p.closing_size_px);
   Blob blob;
-  if (contours.empty()) return blob;
   cv::RotatedRect rect;
   if (p.fit == BoxFit::MinAreaRect) {
-    // Closing may leave pieces; the outline of all of them is the blob.
+    // Closing may leave pieces; the hull of all of them is the blob. The first and last set pixel
+    // of every row span the same hull as the outline.
     std::vector<cv::Point> outline;
-    for (const auto& c : contours) outline.insert(outline.end(), c.begin(), c.end());
+    for (int y = 0; y < mask.rows; ++y) {
+      const uchar* row = mask.ptr<uchar>(y);
+      int first = -1, last = -1;
+      for (int x = 0; x < mask.cols; ++x) {
+        if (row[x] == 0) continue;
+        if (first < 0) first = x;
+        last = x;
+      }
+      if (first < 0) continue;
+      outline.emplace_back(first, y);
+      if (last != first) outline.emplace_back(last, y);
+    }
+    if (outline.empty()) return blob;
     rect = cv::minAreaRect(outline);
     rect.size += cv::Size2f(1.0f, 1.0f);  // pixel centres -> the pixels' extent
   } else {
-    mask.setTo(0);
-    cv::drawContours(mask, contours, -1, cv::Scalar(255), cv::FILLED);  // fill holes
+    fill_holes(mask);
     rect = moment_box(mask);
+    if (rect.size.area() <= 0.0f) return blob;
   }
   rect.center += cv::Point2f(static_cast<float>(bounds.x - pad), static_cast<float>(bounds.y - pad));
   const float shrink = static_cast<float>(2.0 * p.edge_band_px);
