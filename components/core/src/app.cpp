@@ -1,25 +1,32 @@
 #include "uavmot/core/app.hpp"
 
-#include <malloc.h>
-
+#include <cstdlib>
 #include <cstring>
 #include <iostream>
 
+#include <opencv2/core/utility.hpp>
+
 #include "uavmot/core/error.hpp"
+#include "uavmot/core/memory.hpp"
 
 namespace uavmot {
+
+void apply_opencv_threads_from_environment() {
+  const char* value = std::getenv("OPENCV_FOR_THREADS_NUM");
+  if (value == nullptr || *value == '\0') return;
+  char* end = nullptr;
+  const long threads = std::strtol(value, &end, 10);
+  if (*end != '\0' || threads < 1 || threads > 256) return;  // OpenCV's own default then
+  cv::setNumThreads(static_cast<int>(threads));
+}
 
 int run_app(int argc, char** argv, const std::string& name, const std::string& description, const AppSetup& setup) {
   if (argc == 2 && std::strcmp(argv[1], "--describe") == 0) {
     std::cout << description << "\n";
     return kExitOk;
   }
-  // Frames are megabytes. By default glibc hands every freed buffer of that size back to the
-  // kernel (mmap/munmap), so the next frame faults its pages in again: hundreds of page faults per
-  // 1080p frame and copy, costly in a VM. Buffers up to 32 MB (the most glibc allows) come from
-  // the heap instead, and up to 256 MB of free heap stays with the process.
-  mallopt(M_MMAP_THRESHOLD, 32 << 20);
-  mallopt(M_TRIM_THRESHOLD, 256 << 20);
+  configure_allocator_for_frames();
+  apply_opencv_threads_from_environment();
   CLI::App app(description, "uavmot " + name);
   app.set_version_flag("--version", "uavmot 0.1.0");
   try {

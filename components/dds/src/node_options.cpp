@@ -1,6 +1,7 @@
 #include "uavmot/dds/node_options.hpp"
 
 #include "uavmot/core/logging.hpp"
+#include "uavmot/core/memory.hpp"
 
 namespace uavmot::dds {
 
@@ -20,6 +21,10 @@ void add_node_options(CLI::App& app, NodeOptions& options) {
                     "lossless: publish only while this many readers of the output are matched")
       ->check(CLI::NonNegativeNumber)
       ->capture_default_str();
+  app.add_option("--heap-reserve-mb", options.heap_reserve_mb,
+                 "heap faulted in at start, so the first frames do not wait for page faults (0: none)")
+      ->check(CLI::Range(0, 4096))
+      ->capture_default_str();
   app.add_option("--log-level", options.log_level, "trace, debug, info, warn, error or off")
       ->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}))
       ->capture_default_str();
@@ -29,6 +34,7 @@ void finalize(NodeOptions& options, const std::string& component) {
   options.dds.mode = parse_delivery_mode(options.mode);
   options.dds.participant_name = component;
   init_logging(component, options.log_level);
+  prefault_heap(static_cast<std::size_t>(options.heap_reserve_mb));
 }
 
 }  // namespace uavmot::dds

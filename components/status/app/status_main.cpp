@@ -60,6 +60,7 @@ status::HealthReport from_msg(const msg::ComponentHealth& h) {
 
 int status_main(int argc, char** argv) {
   dds::NodeOptions node;
+  node.heap_reserve_mb = 0;  // handles no frames
   node.log_level = "warn";
   bool once = false, json = false;
   double interval_s = 1.0, wait_s = 2.0, stale_s = 3.0;

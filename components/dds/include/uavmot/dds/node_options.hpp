@@ -14,10 +14,12 @@ struct NodeOptions {
   std::string mode = "lossless";
   std::string log_level = "info";
   int wait_subscribers = 0;  // lossless: publish only while this many readers are matched
+  // Heap faulted in at start (uavmot/core/memory.hpp); 0 for tools that handle no frames.
+  int heap_reserve_mb = 64;
 };
 
-// Adds --domain, --qos-profiles, --transport, --discovery-server, --mode, --wait-subscribers, --log-level.
-// Call finalize() after parsing.
+// Adds --domain, --qos-profiles, --transport, --discovery-server, --mode, --wait-subscribers,
+// --heap-reserve-mb, --log-level. Call finalize() after parsing.
 void add_node_options(CLI::App& app, NodeOptions& options);
 void finalize(NodeOptions& options, const std::string& component);
 
