@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include "framePubSubTypes.h"
+#include "tracksPubSubTypes.h"
 #include "uavmot/core/checksum.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/dds/frame_convert.hpp"
@@ -66,6 +67,33 @@ TEST(Participant, LosslessFramesArriveWholeOverSharedMemory) {
   produce.join();
   EXPECT_EQ(received, sent);
   EXPECT_EQ(writer->samples_sent(), static_cast<uint64_t>(kFrames));
+}
+
+// A tracker respawned with saved state reads the chain with ChainResume and gets what was published
+// while it was down; every other reader (Chain) starts from the current sample.
+TEST(Participant, AResumingReaderGetsTheChainHistoryAVolatileOneDoesNot) {
+  Participant writer_side(options("writer"));
+  Participant reader_side(options("readers"));
+  auto writer = writer_side.make_writer<msg::TrackListPubSubType>(kTracksTopic, TopicClass::Chain);
+  constexpr int kSamples = 5;
+  for (int i = 1; i <= kSamples; ++i) {
+    msg::TrackList sample;
+    sample.stream_id("uav1");
+    sample.frame_index(i);
+    ASSERT_TRUE(writer->write(sample));
+  }
+  auto plain = reader_side.make_reader<msg::TrackListPubSubType>(kTracksTopic, TopicClass::Chain);
+  auto resuming = reader_side.make_reader<msg::TrackListPubSubType>(kTracksTopic, TopicClass::ChainResume);
+  ASSERT_TRUE(writer->wait_for_matched(2, std::chrono::seconds(10)));
+  std::vector<int64_t> resumed;
+  msg::TrackList sample;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (static_cast<int>(resumed.size()) < kSamples && std::chrono::steady_clock::now() < deadline) {
+    resuming->wait_for_data(std::chrono::milliseconds(100));
+    while (resuming->take(sample)) resumed.push_back(sample.frame_index());
+  }
+  EXPECT_EQ(resumed, (std::vector<int64_t>{1, 2, 3, 4, 5}));
+  EXPECT_FALSE(plain->take(sample)) << "a volatile reader got history";
 }
 
 }  // namespace
