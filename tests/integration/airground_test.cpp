@@ -587,14 +587,17 @@ TEST_F(AirGround, LinkDownAndUpAgainRediscoversAndResumes) {
 }
 
 // The link limited to 2 Mbit/s (tbf), live mode at 25 fps, and a JPEG preview asked for at far
-// more than its share: full-size frames at 10 Hz (megabits per second) with a 1 Mbit/s share
+// more than its share: 640 px frames at 10 Hz (about 5 Mbit/s) with a 1 Mbit/s share
 // (flow controller). The preview gives way (most images never leave the air); the results do
 // not (every sample the downlink wrote arrived, and the end of stream got through).
 TEST_F(AirGround, OnATwoMegabitLinkThePreviewNotTheTracksGivesWay) {
   ASSERT_TRUE(link_->limit_downlink("2mbit")) << "tc could not add the tbf qdisc";
   const std::string previews = root_ + "/tbf_previews";
   const Run run = run_split("tbf", 135,
-                            {"mode=live", "preview_rate=10", "preview_width=1024", "preview_quality=90", "preview_kbps=1000",
+                            // 640 px JPEGs (about 60 kB): 10 Hz of them need twice the link, and a 1 Mbit/s share
+                            // still passes several within the 3.2 s sequence (full-size 160 kB images passed
+                            // one or two, and none in a run whose preview started late).
+                            {"mode=live", "preview_rate=10", "preview_width=640", "preview_quality=90", "preview_kbps=1000",
                              "preview_dir=" + previews},
                             std::chrono::seconds(60));
   const std::string tc = capture(std::string(kIp) + " netns exec " + link_->air() + " tc -s qdisc show dev " + link_->air_dev());
@@ -625,7 +628,7 @@ TEST_F(AirGround, OnATwoMegabitLinkThePreviewNotTheTracksGivesWay) {
   std::smatch due;
   ASSERT_TRUE(std::regex_search(run.air_log(), due, std::regex(R"(preview: (\d+) of (\d+) images due)"))) << run.air_log();
   const uint64_t preview_due = std::stoull(due[2]);
-  std::printf("[airground] tbf 2 Mbit/s, live, preview 10 Hz full size with a 1 Mbit/s share: %llu images due, %llu sent "
+  std::printf("[airground] tbf 2 Mbit/s, live, preview 10 Hz 640 px with a 1 Mbit/s share: %llu images due, %llu sent "
               "(%llu bytes), %llu received (%.2f Mbit/s over the %.1f s of the sequence); results: %llu of %llu samples "
               "received; air sent %llu bytes\n%s\n",
               static_cast<unsigned long long>(preview_due), static_cast<unsigned long long>(preview_sent),

@@ -94,7 +94,12 @@ int source_main(int argc, char** argv) {
       const int64_t stream_start_ns = dds::wall_clock_ns();
       int exit_code = kExitOk;
       const auto start = Clock::now();
-      start_ticks = start.time_since_epoch().count();
+      // Live, with subscribers to wait for: a reader that the writer has matched may not be listening
+      // yet (segmentation lost frame 1 in about one hd start in six). So frame 1 waits for every
+      // reader's acknowledgement, and no frame counts as late until it has (the camera clock is not
+      // moved: frames that the wait made late are skipped as usual).
+      const bool handshake = !lossless && wait_subscribers > 0;
+      if (!handshake) start_ticks = start.time_since_epoch().count();
       auto count_undecoded = [&] {
         const int64_t undecoded = ahead.skipped_undecoded();
         for (; reported_undecoded < undecoded; ++reported_undecoded) {
@@ -116,6 +121,10 @@ int source_main(int argc, char** argv) {
           frame.capture_time_ns += stream_start_ns;
           auto sample = dds::to_msg(frame);
           const bool ok = lossless ? writer->write_reliably(sample) : writer->write(sample);
+          if (handshake && published == 0) {
+            if (!writer->flush(std::chrono::seconds(2))) spdlog::warn("frame {} not acknowledged by every reader", frame.index);
+            start_ticks = start.time_since_epoch().count();
+          }
           if (!ok) {
             if (lossless) {
               spdlog::error("frame {} was not delivered; stopping so nothing is silently lost", frame.index);
