@@ -91,13 +91,15 @@ int source_main(int argc, char** argv) {
       int64_t published = 0, dropped_late = 0, reported_undecoded = 0;
       // Capture times go on the wire on the wall clock (stream start + (index - 1) / rate), so every
       // component can tell its latency; the results never depend on them.
-      const int64_t stream_start_ns = dds::wall_clock_ns();
+      int64_t stream_start_ns = dds::wall_clock_ns();
       int exit_code = kExitOk;
-      const auto start = Clock::now();
+      auto start = Clock::now();
       // Live, with subscribers to wait for: a reader that the writer has matched may not be listening
-      // yet (segmentation lost frame 1 in about one hd start in six). So frame 1 waits for every
-      // reader's acknowledgement, and no frame counts as late until it has (the camera clock is not
-      // moved: frames that the wait made late are skipped as usual).
+      // yet (segmentation lost frame 1 in about one hd start in six; the last reader can take some
+      // 300 ms). So the first frame waits for every reader's acknowledgement, and the camera clock
+      // starts after that: frame k > 1 is due (k - 1) periods after the acknowledgement, and its
+      // capture time is the stream start + (k - 1) / rate where the stream start is moved by the
+      // wait; the first frame keeps the capture time it was sent with.
       const bool handshake = !lossless && wait_subscribers > 0;
       if (!handshake) start_ticks = start.time_since_epoch().count();
       auto count_undecoded = [&] {
@@ -122,7 +124,12 @@ int source_main(int argc, char** argv) {
           auto sample = dds::to_msg(frame);
           const bool ok = lossless ? writer->write_reliably(sample) : writer->write(sample);
           if (handshake && published == 0) {
+            const auto sent = Clock::now();
             if (!writer->flush(std::chrono::seconds(2))) spdlog::warn("frame {} not acknowledged by every reader", frame.index);
+            // The camera clock starts now: the frames after the first are due from here on.
+            const auto waited = Clock::now() - sent;
+            start += waited;
+            stream_start_ns += std::chrono::duration_cast<std::chrono::nanoseconds>(waited).count();
             start_ticks = start.time_since_epoch().count();
           }
           if (!ok) {
