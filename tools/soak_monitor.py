@@ -28,7 +28,27 @@ def rss_kib(pid):
         return None
 
 
-class Launch:
+class LoggedProcess:
+    """A child process whose output lines are copied to a log and handed to on_line() on a thread.
+    Subclasses set up their own state before calling this constructor: lines may arrive at once."""
+
+    def __init__(self, command, log_path, stderr):
+        self.log = open(log_path, "w")
+        self.proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=stderr, text=True)
+        self.thread = threading.Thread(target=self._read, daemon=True)
+        self.thread.start()
+
+    def _read(self):
+        for line in self.proc.stdout:
+            self.log.write(line)
+            self.log.flush()
+            self.on_line(line)
+
+    def on_line(self, line):
+        raise NotImplementedError
+
+
+class Launch(LoggedProcess):
     """`uavmot launch` with its output copied to a log and parsed for pids, exits and respawns."""
 
     START = re.compile(r"^\[launch\s*\] started (\S+) \(pid (\d+)\)")
@@ -39,47 +59,36 @@ class Launch:
         self.pids = {}
         self.published = None  # the source's own count at its end (its log)
         self.trouble = []
-        self.log = open(log_path, "w")
-        self.proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
-        self.thread = threading.Thread(target=self._read, daemon=True)
-        self.thread.start()
+        super().__init__(command, log_path, subprocess.STDOUT)
 
-    def _read(self):
-        for line in self.proc.stdout:
-            self.log.write(line)
-            self.log.flush()
-            m = self.START.match(line)
-            if m:
-                name, pid = m.group(1), int(m.group(2))
-                if name in self.pids:
-                    self.trouble.append(f"{name} started again (pid {pid})")
-                self.pids[name] = pid
-            elif line.startswith("[launch") and self.TROUBLE.search(line):
-                self.trouble.append(line.strip())
-            m = self.PUBLISHED.search(line)
-            if m:
-                self.published = int(m.group(1))
+    def on_line(self, line):
+        m = self.START.match(line)
+        if m:
+            name, pid = m.group(1), int(m.group(2))
+            if name in self.pids:
+                self.trouble.append(f"{name} started again (pid {pid})")
+            self.pids[name] = pid
+        elif line.startswith("[launch") and self.TROUBLE.search(line):
+            self.trouble.append(line.strip())
+        m = self.PUBLISHED.search(line)
+        if m:
+            self.published = int(m.group(1))
 
 
-class Status:
+class Status(LoggedProcess):
     """`uavmot status --json`: keeps the last row of every component."""
 
     def __init__(self, command, log_path):
         self.rows = {}
-        self.log = open(log_path, "w")
-        self.proc = subprocess.Popen(command, stdout=subprocess.PIPE, stderr=subprocess.DEVNULL, text=True)
-        self.thread = threading.Thread(target=self._read, daemon=True)
-        self.thread.start()
+        super().__init__(command, log_path, subprocess.DEVNULL)
 
-    def _read(self):
-        for line in self.proc.stdout:
-            self.log.write(line)
-            try:
-                table = json.loads(line)
-            except json.JSONDecodeError:
-                continue
-            for row in table:
-                self.rows[row["component"]] = row
+    def on_line(self, line):
+        try:
+            table = json.loads(line)
+        except json.JSONDecodeError:
+            return
+        for row in table:
+            self.rows[row["component"]] = row
 
     def frames(self, component):
         row = self.rows.get(component)
