@@ -16,7 +16,11 @@ void apply_opencv_threads_from_environment() {
   if (value == nullptr || *value == '\0') return;
   char* end = nullptr;
   const long threads = std::strtol(value, &end, 10);
-  if (*end != '\0' || threads < 1 || threads > 256) return;  // OpenCV's own default then
+  if (*end != '\0' || threads < 1 || threads > 256) {
+    std::cerr << "uavmot: warning: ignoring OPENCV_FOR_THREADS_NUM='" << value
+              << "' (expected a whole number from 1 to 256); OpenCV keeps its default\n";
+    return;
+  }
   cv::setNumThreads(static_cast<int>(threads));
 }
 

@@ -29,7 +29,8 @@ int run_app(int argc, char** argv, const std::string& name, const std::string& d
 // OPENCV_FOR_THREADS_NUM=N (1..256) as cv::setNumThreads(N); run_app calls it first. OpenCV 4.6's
 // TBB backend ignores the variable on its own: its workers stay, spin after every parallel_for_
 // (connectedComponents, resize, ...), and took a third of the segmentation process's CPU time in
-// the live chain, where five processes share two cores. Other values leave OpenCV's default.
+// the live chain, where five processes share two cores. Other values leave OpenCV's default,
+// with a warning on stderr.
 void apply_opencv_threads_from_environment();
 
 }  // namespace uavmot
