@@ -8,6 +8,7 @@
 #include "uavmot/tracking/feature_associator.hpp"
 #include "uavmot/tracking/initiator.hpp"
 #include "uavmot/tracking/kalman_model.hpp"
+#include "uavmot/tracking/piece_merger.hpp"
 #include "uavmot/tracking/predictor.hpp"
 #include "uavmot/tracking/region_associator.hpp"
 #include "uavmot/tracking/split_merge.hpp"
@@ -173,6 +174,9 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
       }
     }
   }
+  // Two tracks on the halves of one long vehicle become one (paper IV-C).
+  std::vector<bool> absorbed = merge_track_pieces(state_.tracks, kalman, region_hit, features, options_, scene_);
+  for (size_t i = 0; i < n; ++i) absorbed[i] = absorbed[i] || resolved.absorbed[i];
   std::vector<OrientedBox> posterior(n);
   for (size_t i = 0; i < n; ++i) {
     posterior[i] = box_of(kalman[i].mean);
@@ -192,7 +196,7 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   std::vector<OrientedBox> live_boxes;
   for (size_t i = 0; i < n; ++i) {
     TrackRecord& t = state_.tracks[i];
-    if (resolved.absorbed[i]) continue;  // a piece of another track's object
+    if (absorbed[i]) continue;  // a piece of another track's object
     record_frame(t, region_hit[i], supported[i], options_);
     switch (decide_fate(t, inside_view(posterior[i], options_), options_)) {
       case Fate::Keep:

@@ -49,7 +49,7 @@ struct MotionOptions {
   // --- Independent motion ----------------------------------------------------------------
   int background_flow_degree = 3;   // polynomial of the residual background field (0 = off)
   int history_frames = 10;          // positions per feature used for the velocity fit
-  int min_track_frames = 4;         // a feature is classified once seen in this many frames
+  int min_track_frames = 2;         // a feature is classified once seen in this many frames
   double position_sigma_px = 0.08;  // prior 1-sigma tracking noise of one position
   double prior_weight = 4.0;        // degrees of freedom the prior noise counts for
   double moving_sigma_factor = 4.0;    // moving when speed > factor * velocity_sigma ...

@@ -1,0 +1,37 @@
+#pragma once
+// Pieces of one long vehicle (paper IV-C: "split regions of one object ... have similar motion and,
+// thus, are merged and assigned to one track"). A truck's cab and trailer, or a bus's two halves,
+// often carry their own moving features and blobs, so they start two tracks that then drive nose
+// to tail forever. Two tracks are pieces of one object when, in this frame, both were measured by
+// their own region, the features on them move at `piece_min_speed_mps` or faster (queues crawl bumper to bumper)
+// with velocities within `piece_max_speed_difference_mps` (a car closing in on the one ahead is
+// faster), one is behind the other along the direction of travel (the pieces' own box angles are
+// noise for a near-square cab), the gap between their boxes is below `piece_max_gap_m` (a car
+// keeps metres to the one ahead at speed; a trailer none), and together they are no longer than
+// `piece_max_length_factor` vehicle lengths. The senior track takes the enclosing box
+// as its measurement and the junior one is absorbed.
+
+#include <vector>
+
+#include "uavmot/core/scene_info.hpp"
+#include "uavmot/tracking/feature_associator.hpp"
+#include "uavmot/tracking/kalman_model.hpp"
+#include "uavmot/tracking/tracker_options.hpp"
+#include "uavmot/tracking/tracker_state.hpp"
+
+namespace uavmot::tracking {
+
+// True when `a` and `b` (posterior boxes, with the ground motion of the features on each, px/frame)
+// are two pieces of one object.
+bool are_pieces_of_one_object(const OrientedBox& a, const cv::Vec2d& motion_a, const OrientedBox& b,
+                              const cv::Vec2d& motion_b, const TrackerOptions& options, const SceneInfo& scene);
+
+// Merges pieces among the tracks with a region hit in this frame (`measured`) whose posterior box
+// holds moving features. `kalman` holds the posteriors and is updated for the keepers; returns, per
+// track, whether it was absorbed. Each track takes part in at most one merge per frame, pairs in
+// index order.
+std::vector<bool> merge_track_pieces(const std::vector<TrackRecord>& tracks, std::vector<KalmanState>& kalman,
+                                     const std::vector<bool>& measured, const FeatureIndex& features,
+                                     const TrackerOptions& options, const SceneInfo& scene);
+
+}  // namespace uavmot::tracking

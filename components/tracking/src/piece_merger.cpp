@@ -1,0 +1,123 @@
+#include "uavmot/tracking/piece_merger.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include "uavmot/tracking/split_merge.hpp"
+#include "uavmot/tracking/updater.hpp"
+
+namespace uavmot::tracking {
+namespace {
+
+// Half extents of a box projected on a unit axis and on its normal. The pieces' own box angles are
+// not trusted: a cab is near square, so its angle is noise; the common direction of travel is not.
+struct Extent {
+  double along = 0.0;
+  double across = 0.0;
+};
+
+Extent extent_on(const OrientedBox& box, const cv::Point2d& axis) {
+  const double a = box.angle_deg * CV_PI / 180.0;
+  const double c = std::abs(std::cos(a) * axis.x + std::sin(a) * axis.y);  // |cos| of box axis vs axis
+  const double s = std::sqrt(std::max(0.0, 1.0 - c * c));
+  return {box.length / 2.0 * c + box.width / 2.0 * s, box.length / 2.0 * s + box.width / 2.0 * c};
+}
+
+struct PiecePair {
+  cv::Point2d axis;    // direction of travel
+  cv::Point2d offset;  // b's centre relative to a's: along, across the axis
+  Extent a, b;
+};
+
+PiecePair measure(const OrientedBox& a, const OrientedBox& b, const cv::Vec2d& velocity) {
+  PiecePair p;
+  const double speed = cv::norm(velocity);
+  p.axis = {velocity[0] / speed, velocity[1] / speed};
+  const cv::Point2d normal(-p.axis.y, p.axis.x);
+  const cv::Point2d d(b.cx - a.cx, b.cy - a.cy);
+  p.offset = {d.dot(p.axis), d.dot(normal)};
+  p.a = extent_on(a, p.axis);
+  p.b = extent_on(b, p.axis);
+  return p;
+}
+
+// The box along the direction of travel that holds both pieces.
+OrientedBox union_along_axis(const OrientedBox& a, const PiecePair& p) {
+  const double lo_u = std::min(-p.a.along, p.offset.x - p.b.along), hi_u = std::max(p.a.along, p.offset.x + p.b.along);
+  const double lo_v = std::min(-p.a.across, p.offset.y - p.b.across), hi_v = std::max(p.a.across, p.offset.y + p.b.across);
+  const double mid_u = (lo_u + hi_u) / 2.0, mid_v = (lo_v + hi_v) / 2.0;
+  OrientedBox out;
+  out.cx = a.cx + mid_u * p.axis.x - mid_v * p.axis.y;
+  out.cy = a.cy + mid_u * p.axis.y + mid_v * p.axis.x;
+  out.length = hi_u - lo_u;
+  out.width = hi_v - lo_v;
+  out.angle_deg = normalize_axis_angle_deg(std::atan2(p.axis.y, p.axis.x) * 180.0 / CV_PI);
+  return out;
+}
+
+bool senior(const TrackRecord& a, const TrackRecord& b) { return a.hits != b.hits ? a.hits > b.hits : a.id < b.id; }
+
+}  // namespace
+
+bool are_pieces_of_one_object(const OrientedBox& a, const cv::Vec2d& motion_a, const OrientedBox& b,
+                              const cv::Vec2d& motion_b, const TrackerOptions& options, const SceneInfo& scene) {
+  if (!(options.piece_max_gap_m > 0.0)) return false;
+  if (scene.speed_mps(cv::norm(motion_a)) < options.piece_min_speed_mps ||
+      scene.speed_mps(cv::norm(motion_b)) < options.piece_min_speed_mps) {
+    return false;
+  }
+  // The pieces of one vehicle move as one; a car closing in on the one ahead does not.
+  if (scene.speed_mps(cv::norm(motion_a - motion_b)) > options.piece_max_speed_difference_mps) return false;
+  const PiecePair p = measure(a, b, motion_a + motion_b);
+  // Each piece is one vehicle wide: a box over two cars side by side is no piece of anything.
+  const double max_width = scene.metres_to_px(options.piece_max_width_m);
+  if (std::min(a.width, a.length) > max_width || std::min(b.width, b.length) > max_width) return false;
+  // One behind the other in the same lane, not side by side or in the next lane.
+  if (std::abs(p.offset.y) > options.piece_max_lateral_m / scene.gsd_m) return false;
+  const double gap = std::abs(p.offset.x) - p.a.along - p.b.along;
+  if (gap > scene.metres_to_px(options.piece_max_gap_m)) return false;
+  const double length = std::abs(p.offset.x) + p.a.along + p.b.along;
+  return length <= options.piece_max_length_factor * scene.metres_to_px(scene.vehicle_length_m);
+}
+
+std::vector<bool> merge_track_pieces(const std::vector<TrackRecord>& tracks, std::vector<KalmanState>& kalman,
+                                     const std::vector<bool>& measured, const FeatureIndex& features,
+                                     const TrackerOptions& options, const SceneInfo& scene) {
+  const size_t n = tracks.size();
+  std::vector<bool> absorbed(n, false);
+  if (!(options.piece_max_gap_m > 0.0)) return absorbed;
+  // Each measured track's box and the motion of the features on it (precise to a few hundredths
+  // of a pixel per frame, unlike a young track's Kalman velocity).
+  std::vector<OrientedBox> boxes(n);
+  std::vector<cv::Vec2d> motion(n);
+  std::vector<bool> candidate(n, false);
+  for (size_t i = 0; i < n; ++i) {
+    if (!measured[i]) continue;
+    boxes[i] = box_of(kalman[i].mean);
+    candidate[i] = region_motion(boxes[i], features, motion[i]);
+  }
+  std::vector<bool> merged(n, false);
+  const BoxMeasurementNoise noise = box_measurement_noise(options);
+  for (size_t i = 0; i < n; ++i) {
+    for (size_t j = i + 1; j < n; ++j) {
+      if (merged[i] || !candidate[i]) break;
+      if (!candidate[j] || merged[j]) continue;
+      const OrientedBox& a = boxes[i];
+      const OrientedBox& b = boxes[j];
+      const cv::Vec2d va = motion[i], vb = motion[j];
+      if (!are_pieces_of_one_object(a, va, b, vb, options, scene)) continue;
+      const size_t keeper = senior(tracks[i], tracks[j]) ? i : j;
+      const size_t piece = keeper == i ? j : i;
+      const OrientedBox& kept_box = keeper == i ? a : b;
+      const OrientedBox& piece_box = keeper == i ? b : a;
+      const OrientedBox whole = union_along_axis(kept_box, measure(kept_box, piece_box, va + vb));
+      open_size_uncertainty(kalman[keeper], whole);
+      kalman[keeper] = update_with_box(kalman[keeper], whole, noise, options.min_box_size_px);
+      absorbed[piece] = true;
+      merged[i] = merged[j] = true;
+    }
+  }
+  return absorbed;
+}
+
+}  // namespace uavmot::tracking

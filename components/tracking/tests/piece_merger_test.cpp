@@ -1,0 +1,127 @@
+// Pieces of one long vehicle (piece_merger.hpp): the geometric rule, and the tracker ending with one
+// track on a truck that segmentation reports as cab and trailer.
+#include <gtest/gtest.h>
+
+#include "synthetic_scene.hpp"
+#include "uavmot/tracking/piece_merger.hpp"
+
+namespace uavmot::tracking::testing {
+namespace {
+
+// At the default scene (0.35 m/px, 25 fps) 1 px/frame is 8.75 m/s, a car is 12.9 x 5.1 px.
+const SceneInfo kScene;
+const TrackerOptions kOptions;
+
+// A box of `length` along the x axis whose rear end is at `rear_x`.
+OrientedBox along_x(double rear_x, double length, double width = 7.0, double y = 100.0, double angle = 0.0) {
+  return {rear_x + length / 2.0, y, width, length, angle};
+}
+
+TEST(PieceMerger, CabAndTrailerNoseToTailArePieces) {
+  const OrientedBox trailer = along_x(100.0, 20.0), cab = along_x(121.0, 9.0);  // 1 px gap
+  EXPECT_TRUE(are_pieces_of_one_object(trailer, {1.0, 0.0}, cab, {1.02, 0.01}, kOptions, kScene));
+  EXPECT_TRUE(are_pieces_of_one_object(cab, {1.02, 0.01}, trailer, {1.0, 0.0}, kOptions, kScene));
+}
+
+TEST(PieceMerger, ANearSquareCabWithANoisyAngleIsStillAPiece) {
+  // The direction of travel, not the cab box's angle, says where "behind" is.
+  const OrientedBox trailer = along_x(100.0, 20.0), cab = along_x(121.0, 8.0, 7.0, 100.0, 35.0);
+  EXPECT_TRUE(are_pieces_of_one_object(trailer, {1.0, 0.0}, cab, {1.0, 0.0}, kOptions, kScene));
+}
+
+TEST(PieceMerger, CarsKeepingADistanceAreNotPieces) {
+  // 2 m between bumpers is already more than a trailer coupling: two cars.
+  const OrientedBox a = along_x(100.0, 13.0, 5.0), b = along_x(113.0 + 2.0 / kScene.gsd_m, 13.0, 5.0);
+  EXPECT_FALSE(are_pieces_of_one_object(a, {1.0, 0.0}, b, {1.0, 0.0}, kOptions, kScene));
+}
+
+TEST(PieceMerger, CarsSideBySideOrInTheNextLaneAreNotPieces) {
+  const OrientedBox a = along_x(100.0, 13.0, 5.0), beside = along_x(100.0, 13.0, 5.0, 106.0);
+  const OrientedBox next_lane_ahead = along_x(113.5, 13.0, 5.0, 110.0);
+  EXPECT_FALSE(are_pieces_of_one_object(a, {1.0, 0.0}, beside, {1.0, 0.0}, kOptions, kScene));
+  EXPECT_FALSE(are_pieces_of_one_object(a, {1.0, 0.0}, next_lane_ahead, {1.0, 0.0}, kOptions, kScene));
+}
+
+TEST(PieceMerger, ABoxOverTwoCarsSideBySideIsNoPiece) {
+  // Segmentation merged two cars driving side by side into one wide box; the car ahead is not part of it.
+  const OrientedBox pair = along_x(100.0, 13.0, 14.0), ahead = along_x(113.5, 13.0, 5.0, 102.0);
+  EXPECT_FALSE(are_pieces_of_one_object(pair, {1.0, 0.0}, ahead, {1.0, 0.0}, kOptions, kScene));
+  TrackerOptions any_width = kOptions;  // the width limit is what decides here
+  any_width.piece_max_width_m = 100.0;
+  EXPECT_TRUE(are_pieces_of_one_object(pair, {1.0, 0.0}, ahead, {1.0, 0.0}, any_width, kScene));
+}
+
+TEST(PieceMerger, ACrawlingQueueIsNotMerged) {
+  // Bumper to bumper is normal in a queue: below piece_min_speed_mps nothing is merged.
+  const OrientedBox a = along_x(100.0, 13.0, 5.0), b = along_x(113.5, 13.0, 5.0);
+  const double crawl = 0.9 * kOptions.piece_min_speed_mps / (kScene.gsd_m * kScene.fps);  // px/frame
+  EXPECT_FALSE(are_pieces_of_one_object(a, {crawl, 0.0}, b, {crawl, 0.0}, kOptions, kScene));
+  EXPECT_TRUE(are_pieces_of_one_object(a, {1.0, 0.0}, b, {1.0, 0.0}, kOptions, kScene));
+}
+
+TEST(PieceMerger, DifferentMotionOrTooLongIsNotOneObject) {
+  const OrientedBox a = along_x(100.0, 13.0, 5.0), b = along_x(113.5, 13.0, 5.0);
+  EXPECT_FALSE(are_pieces_of_one_object(a, {1.0, 0.0}, b, {2.0, 0.0}, kOptions, kScene));  // overtaking
+  const OrientedBox long_a = along_x(100.0, 25.0), long_b = along_x(125.5, 25.0);  // 50 px > 3 car lengths
+  EXPECT_FALSE(are_pieces_of_one_object(long_a, {1.0, 0.0}, long_b, {1.0, 0.0}, kOptions, kScene));
+}
+
+TEST(PieceMerger, DisabledByAZeroGap) {
+  TrackerOptions off = kOptions;
+  off.piece_max_gap_m = 0.0;
+  EXPECT_FALSE(are_pieces_of_one_object(along_x(100.0, 20.0), {1.0, 0.0}, along_x(121.0, 9.0), {1.0, 0.0}, off, kScene));
+}
+
+// A 32 x 7 px truck that segmentation always reports as a 21 px trailer and a 9 px cab, 2 px apart.
+SyntheticScene truck_in_two_pieces() {
+  ObjectPath truck;
+  truck.truth_id = 1;
+  truck.length = 32.0;
+  truck.width = 7.0;
+  truck.ground_centre = straight({120, 240}, {1.2, 0.3});
+  truck.feature_count = 12;
+  SyntheticScene scene({truck}, static_camera());
+  scene.edit_regions = [](int, std::vector<Region>& regions, const std::vector<TruthBox>&) {
+    if (regions.size() != 1) return;
+    const OrientedBox whole = regions[0].box;
+    Region rear = regions[0], front = regions[0];
+    rear.box.length = 21.0;
+    front.box.length = 9.0;
+    const cv::Point2d r = from_box_coordinates(whole, {-(16.0 - 10.5) / 32.0, 0.0});
+    const cv::Point2d f = from_box_coordinates(whole, {(16.0 - 4.5) / 32.0, 0.0});
+    rear.box.cx = r.x;
+    rear.box.cy = r.y;
+    front.box.cx = f.x;
+    front.box.cy = f.y;
+    regions = {rear, front};
+  };
+  return scene;
+}
+
+TEST(PieceMerger, TruckReportedAsCabAndTrailerEndsAsOneTrackOfItsFullLength) {
+  SyntheticScene scene = truck_in_two_pieces();
+  Tracker tracker;
+  RunOptions run = run_for(100);
+  run.score_from_frame = 20;
+  const Score s = run_and_score(scene, tracker, run);
+  EXPECT_EQ(s.track_ids_of_truth.at(1).size(), 1u);
+  EXPECT_EQ(s.matched, s.truth_instances);
+  EXPECT_EQ(s.unmatched_confirmed_tracks, 0);
+  EXPECT_LT(s.mean_length_error, 2.0);
+}
+
+TEST(PieceMerger, WithoutTheRuleTheTruckStaysTwoTracks) {
+  // The scenario above is a real test of the rule: switched off, cab and trailer keep their tracks.
+  SyntheticScene scene = truck_in_two_pieces();
+  TrackerOptions options;
+  options.piece_max_gap_m = 0.0;
+  Tracker tracker(options);
+  RunOptions run = run_for(100);
+  run.score_from_frame = 20;
+  const Score s = run_and_score(scene, tracker, run);
+  EXPECT_GE(s.all_confirmed_ids.size(), 2u);
+  EXPECT_GT(s.mean_length_error, 5.0);
+}
+
+}  // namespace
+}  // namespace uavmot::tracking::testing
