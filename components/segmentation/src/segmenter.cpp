@@ -169,7 +169,7 @@ std::vector<Region> Segmenter::segment_window(const cv::Mat& gray, const cv::Rec
   const std::vector<Blob> blobs =
       extract_blobs(acc, threshold, r.closing_size_px, r.edge_band_px, r.box_fit, connectivity, 3, split);
   for (GroupedBlob& group : group_vehicle_parts(blobs, r.group_length_factor * vehicle_length,
-                                                r.group_width_factor * vehicle_width)) {
+                                                r.group_width_factor * vehicle_width, r.group_touch_px)) {
     group.box.cx += window.x;
     group.box.cy += window.y;
     const OrientedBox& box = group.box;

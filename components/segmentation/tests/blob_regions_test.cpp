@@ -105,5 +105,31 @@ TEST(ExtractBlobs, NothingAboveThresholdGivesNoBlob) {
   EXPECT_TRUE(extract_blobs(cv::Mat(), 10.0, 3, 1.0).empty());
 }
 
+// A car painted like the road shows only its windows: two bars across the car, a few pixels apart.
+std::vector<Blob> two_window_bars(double gap_px) {
+  Blob rear, front;
+  rear.box = {100.0, 50.0, 2.0, 5.0, 90.0};  // 2 px along the car (x), 5 px across
+  front.box = {100.0 + 2.0 + gap_px, 50.0, 2.0, 5.0, 90.0};
+  rear.pixel_count = 10;
+  front.pixel_count = 9;
+  return {rear, front};
+}
+
+TEST(GroupVehicleParts, WindowBarsWithinTheTouchDistanceAreOneVehicle) {
+  const auto grouped = group_vehicle_parts(two_window_bars(2.5), 16.7, 7.7, 3.0);
+  ASSERT_EQ(grouped.size(), 1u);
+  EXPECT_EQ(grouped[0].parts, 2);
+  EXPECT_NEAR(grouped[0].box.length, 6.5, 0.01);  // rear edge of one bar to front edge of the other
+  EXPECT_NEAR(grouped[0].box.width, 5.0, 0.01);
+  EXPECT_NEAR(grouped[0].box.cx, 102.25, 0.01);
+  EXPECT_EQ(group_vehicle_parts(two_window_bars(2.5), 16.7, 7.7, 1.5).size(), 2u);  // the old 1.5 px
+}
+
+TEST(GroupVehicleParts, FartherBlobsOrAGroupLargerThanAVehicleStaySeparate) {
+  EXPECT_EQ(group_vehicle_parts(two_window_bars(4.0), 16.7, 7.7, 3.0).size(), 2u);
+  EXPECT_EQ(group_vehicle_parts(two_window_bars(2.5), 6.0, 7.7, 3.0).size(), 2u);  // 6.5 px > 6 px
+  EXPECT_EQ(group_vehicle_parts(two_window_bars(2.5), 0.0, 0.0, 3.0).size(), 2u);  // disabled
+}
+
 }  // namespace
 }  // namespace uavmot::segmentation
