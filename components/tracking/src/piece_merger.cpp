@@ -70,14 +70,14 @@ bool are_pieces_of_one_object(const OrientedBox& a, const cv::Vec2d& motion_a, c
   if (scene.speed_mps(cv::norm(motion_a - motion_b)) > options.piece_max_speed_difference_mps) return false;
   const PiecePair p = measure(a, b, motion_a + motion_b);
   // Each piece is one vehicle wide: a box over two cars side by side is no piece of anything.
-  const double max_width = scene.metres_to_px(options.piece_max_width_m);
+  const double max_width = scene.metres_to_px(options.max_object_width_m);
   if (std::min(a.width, a.length) > max_width || std::min(b.width, b.length) > max_width) return false;
   // One behind the other in the same lane, not side by side or in the next lane.
   if (std::abs(p.offset.y) > options.piece_max_lateral_m / scene.gsd_m) return false;
   const double gap = std::abs(p.offset.x) - p.a.along - p.b.along;
   if (gap > scene.metres_to_px(options.piece_max_gap_m)) return false;
   const double length = std::abs(p.offset.x) + p.a.along + p.b.along;
-  return length <= options.piece_max_length_factor * scene.metres_to_px(scene.vehicle_length_m);
+  return length <= options.max_object_length_factor * scene.metres_to_px(scene.vehicle_length_m);
 }
 
 std::vector<bool> merge_track_pieces(const std::vector<TrackRecord>& tracks, std::vector<KalmanState>& kalman,

@@ -35,9 +35,15 @@ int linked_features_inside(const TrackRecord& track, const OrientedBox& box, con
   return n;
 }
 
-bool fits_inside(const OrientedBox& candidate, const OrientedBox& predicted, double factor) {
+// The fragments' union fits the predicted object enlarged by `factor`, and no vehicle is larger than
+// `largest` (width across, height along; zero = no limit): without that bound a box that took in
+// its neighbour in a queue would take in the next one too, growing a little every frame.
+bool fits_inside(const OrientedBox& candidate, const OrientedBox& predicted, double factor, const cv::Size2d& largest) {
   const double big = std::max(predicted.length, predicted.width) * factor;
   const double small = std::min(predicted.length, predicted.width) * factor;
+  if (largest.width > 0.0 && largest.height > 0.0 && (candidate.width > largest.width || candidate.length > largest.height)) {
+    return false;
+  }
   return candidate.length <= big && candidate.width <= std::max(small, 1.0) + 1.0;
 }
 
@@ -45,7 +51,7 @@ bool fits_inside(const OrientedBox& candidate, const OrientedBox& predicted, dou
 TrackMeasurement split_measurement(const TrackRecord& track, const OrientedBox& predicted, const std::vector<int>& own,
                                    const std::vector<double>& overlaps, const std::vector<OrientedBox>& regions,
                                    const FeatureIndex& features, const TrackerOptions& options,
-                                   std::vector<int>& leftovers) {
+                                   const cv::Size2d& largest_object_px, std::vector<int>& leftovers) {
   TrackMeasurement m;
   m.kind = MeasurementKind::Box;
   if (own.size() == 1) {
@@ -76,7 +82,7 @@ TrackMeasurement split_measurement(const TrackRecord& track, const OrientedBox& 
     std::vector<OrientedBox> grown = parts;
     grown.push_back(candidate);
     const OrientedBox union_box = enclosing_box(grown);
-    if (same_motion && fits_inside(union_box, predicted, options.fragment_union_factor)) {
+    if (same_motion && fits_inside(union_box, predicted, options.fragment_union_factor, largest_object_px)) {
       parts = std::move(grown);  // a fragment of the same object
     } else {
       leftovers.push_back(own[i]);
@@ -158,7 +164,8 @@ void absorb_pieces(RegionAssociation& association, const std::vector<OrientedBox
 SplitMergeResult resolve_split_merge(const RegionAssociation& gating, const std::vector<OrientedBox>& regions,
                                      const std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
                                      const std::vector<cv::Vec2d>& velocities, const cv::Size2d& max_object_size_px,
-                                     const FeatureIndex& features, const TrackerOptions& options) {
+                                     const FeatureIndex& features, const TrackerOptions& options,
+                                     const cv::Size2d& largest_object_px) {
   RegionAssociation association = without_tentative_claims(gating, tracks);
   SplitMergeResult result;
   result.measurements.resize(tracks.size());
@@ -178,7 +185,8 @@ SplitMergeResult resolve_split_merge(const RegionAssociation& gating, const std:
       }
     }
     if (!own.empty()) {
-      result.measurements[t] = split_measurement(tracks[t], predicted[t], own, own_overlaps, regions, features, options, leftovers);
+      result.measurements[t] = split_measurement(tracks[t], predicted[t], own, own_overlaps, regions, features, options,
+                                                 largest_object_px, leftovers);
       result.measurements[t].size_jump = result.measurements[t].size_jump || keepers[t];
       continue;
     }

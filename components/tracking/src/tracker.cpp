@@ -149,8 +149,10 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   const RegionAssociation association = associate_regions(regions, predicted, options_.min_intersection_fraction);
   const cv::Size2d max_object_size(scene_.metres_to_px(scene_.vehicle_width_m) * options_.single_object_size_factor,
                                    scene_.metres_to_px(scene_.vehicle_length_m) * options_.single_object_size_factor);
-  const SplitMergeResult resolved =
-      resolve_split_merge(association, regions, state_.tracks, predicted, velocities, max_object_size, features, options_);
+  const cv::Size2d largest_object(scene_.metres_to_px(options_.max_object_width_m),
+                                  scene_.metres_to_px(scene_.vehicle_length_m) * options_.max_object_length_factor);
+  const SplitMergeResult resolved = resolve_split_merge(association, regions, state_.tracks, predicted, velocities,
+                                                        max_object_size, features, options_, largest_object);
 
   // 5. Kalman update; a track without a region may be carried by its features alone.
   const BoxMeasurementNoise box_noise = box_measurement_noise(options_);

@@ -146,6 +146,26 @@ TEST(SplitMerge, SplitKeepsTheRegionTheFeaturesFollowAndFreesTheOther) {
   EXPECT_EQ(r.free_regions, (std::vector<int>{1}));
 }
 
+TEST(SplitMerge, FragmentsNeverMakeABoxLargerThanTheLargestObject) {
+  // A box that already took in a neighbour in a queue (12 px wide) sees the car beside it as one more
+  // fragment with the same motion: its union would fit the enlarged prediction but is wider than any
+  // vehicle, so that region is left over instead of growing the box further.
+  std::vector<TrackRecord> tracks(1);
+  const std::vector<OrientedBox> predicted = {{100, 100, 12, 20, 0}};
+  const FeatureIndex features({feature(1, {100, 97}, {1, 0}), feature(2, {100, 106}, {1, 0})});
+  const std::vector<OrientedBox> regions = {{100, 97, 6, 14, 0}, {100, 106, 5, 13, 0}};
+  const RegionAssociation a = associate_regions(regions, predicted, 0.05);
+  const SplitMergeResult unbounded =
+      resolve_split_merge(a, regions, tracks, predicted, velocities_of(1), {}, features, TrackerOptions{});
+  ASSERT_EQ(unbounded.measurements[0].kind, MeasurementKind::Box);
+  EXPECT_GT(unbounded.measurements[0].box.width, 13.0);  // the two merged: 14.5 px wide
+  const SplitMergeResult bounded = resolve_split_merge(a, regions, tracks, predicted, velocities_of(1), {}, features,
+                                                       TrackerOptions{}, cv::Size2d(11.4, 38.6));
+  ASSERT_EQ(bounded.measurements[0].kind, MeasurementKind::Box);
+  EXPECT_LT(bounded.measurements[0].box.width, 6.5);
+  EXPECT_EQ(bounded.free_regions.size(), 1u);
+}
+
 TEST(SplitMerge, FragmentsWithTheSameMotionAreOneMeasurement) {
   std::vector<TrackRecord> tracks(1);
   const std::vector<OrientedBox> predicted = {{100, 100, 5, 15, 0}};

@@ -47,7 +47,7 @@ TEST(PieceMerger, ABoxOverTwoCarsSideBySideIsNoPiece) {
   const OrientedBox pair = along_x(100.0, 13.0, 14.0), ahead = along_x(113.5, 13.0, 5.0, 102.0);
   EXPECT_FALSE(are_pieces_of_one_object(pair, {1.0, 0.0}, ahead, {1.0, 0.0}, kOptions, kScene));
   TrackerOptions any_width = kOptions;  // the width limit is what decides here
-  any_width.piece_max_width_m = 100.0;
+  any_width.max_object_width_m = 100.0;
   EXPECT_TRUE(are_pieces_of_one_object(pair, {1.0, 0.0}, ahead, {1.0, 0.0}, any_width, kScene));
 }
 

@@ -8,7 +8,7 @@
 // faster), one is behind the other along the direction of travel (the pieces' own box angles are
 // noise for a near-square cab), the gap between their boxes is below `piece_max_gap_m` (a car
 // keeps metres to the one ahead at speed; a trailer none), and together they are no longer than
-// `piece_max_length_factor` vehicle lengths. The senior track takes the enclosing box
+// `max_object_length_factor` vehicle lengths. The senior track takes the enclosing box
 // as its measurement and the junior one is absorbed.
 
 #include <vector>

@@ -4,8 +4,9 @@
 //  - one region for several tracks (merge, e.g. overtaking): each track's centre is reconstructed from
 //    its own linked features (median), its size is kept from the prediction;
 //  - several regions for one track (split): regions that move alike and together fit the object are
-//    fragments of it and are merged into one box; otherwise the track keeps the region its features
-//    follow and the others are free to start new tracks.
+//    fragments of it and are merged into one box, no larger than `largest_object_px` (width across,
+//    height along; zero = no limit); otherwise the track keeps the region its features follow and
+//    the others are free to start new tracks.
 // A tentative track's claim on a region that an established track also validates is dropped first.
 // A shared region no larger than one object (`max_object_size_px`: width across, height along) whose
 // tracks move alike is one object tracked in pieces: the senior track (most hits) keeps it and the
@@ -43,6 +44,7 @@ OrientedBox enclosing_box(const std::vector<OrientedBox>& boxes);
 SplitMergeResult resolve_split_merge(const RegionAssociation& gating, const std::vector<OrientedBox>& regions,
                                      const std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
                                      const std::vector<cv::Vec2d>& velocities, const cv::Size2d& max_object_size_px,
-                                     const FeatureIndex& features, const TrackerOptions& options);
+                                     const FeatureIndex& features, const TrackerOptions& options,
+                                     const cv::Size2d& largest_object_px = {});
 
 }  // namespace uavmot::tracking

@@ -53,19 +53,20 @@ struct TrackerOptions {
   // A region shared by several tracks but no larger than SceneInfo's vehicle size times this factor
   // holds one object tracked in pieces: the senior track keeps it, the others are absorbed. 0 disables.
   double single_object_size_factor = 1.5;
-  // Two tracks driving nose to tail are pieces of one long vehicle (truck cab and trailer) when both
-  // move at piece_min_speed_mps or faster, their velocities differ by at most
-  // piece_max_speed_difference_mps, one is behind the other along the direction of
-  // travel (centres at most piece_max_lateral_m apart across it, each at most piece_max_width_m
-  // wide), the gap between their boxes is at
-  // most piece_max_gap_m, and together they are at most piece_max_length_factor x SceneInfo's
-  // vehicle length (piece_merger.hpp). piece_max_gap_m = 0 disables.
+  // The largest object the tracker assembles from fragments or pieces: this wide (a truck and the
+  // blur of its outline) and this many x SceneInfo's vehicle length (the segmentation's longest region).
+  double max_object_width_m = 4.0;
+  double max_object_length_factor = 3.0;
+  // Two tracks driving nose to tail are pieces of one long vehicle (truck cab and trailer) when the
+  // features on both move at piece_min_speed_mps or faster with velocities within
+  // piece_max_speed_difference_mps, one is behind the other along the direction of travel (centres
+  // at most piece_max_lateral_m apart across it), the gap between their boxes is at most
+  // piece_max_gap_m, and each and both together fit the largest object above (piece_merger.hpp).
+  // piece_max_gap_m = 0 disables.
   double piece_max_gap_m = 1.5;
   double piece_min_speed_mps = 2.0;
   double piece_max_speed_difference_mps = 1.0;
   double piece_max_lateral_m = 0.9;
-  double piece_max_width_m = 4.0;  // a truck and the blur of its outline
-  double piece_max_length_factor = 3.0;
 
   // --- Initiation (initiator) ---------------------------------------------------------------
   // A free region is not started as a new track while this fraction of it lies inside a live track.
