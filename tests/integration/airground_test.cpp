@@ -496,16 +496,20 @@ TEST_F(AirGround, SecurityEncryptsTheLinkAndKeepsOutsidersOutOfTheGroundStation)
   auto inject_plain = injector("inject_plain", {});
   auto inject_sink = injector("inject_sink_identity", {{"UAVMOT_QOS_PROFILES", security + "/sink.xml"}});
   auto inject_forged = injector("inject_forged_permissions", {{"UAVMOT_QOS_PROFILES", rogue + "/forged.xml"}});
-  Run run = run_split("secure", 128, {"qos_dir=" + security});
   // Fast DDS 2.9 gives up an authentication handshake after a fixed number of resends (its library
-  // has none of the later PKI-DH handshake settings); about one start in four here, two of the air's own nodes never
-  // authenticate each other and the air stops for want of readers. Such a start is retried once,
-  // and said so; a second failure fails the test.
-  const bool air_never_matched = run.air_code() != 0 && (run.air_log().find("no subscriber within") != std::string::npos ||
-                                                         run.air_log().find("readers for") != std::string::npos);
-  if (air_never_matched) {
-    std::printf("[airground] secure: the air's nodes did not all authenticate each other; starting the run again\n");
-    run = run_split("secure_again", 128, {"qos_dir=" + security});
+  // has none of the later PKI-DH handshake settings); about one start in four here, two of the air's
+  // own nodes never authenticate each other and the air stops for want of readers. Such a start is
+  // retried, and said so, up to two times (session 5 saw two bad starts in a row once); a third
+  // failure fails the test.
+  auto air_never_matched = [](const Run& r) {
+    return r.air_code() != 0 && (r.air_log().find("no subscriber within") != std::string::npos ||
+                                 r.air_log().find("readers for") != std::string::npos);
+  };
+  Run run = run_split("secure", 128, {"qos_dir=" + security});
+  for (int retry = 1; retry <= 2 && air_never_matched(run); ++retry) {
+    std::printf("[airground] secure: the air's nodes did not all authenticate each other; starting the run again (%d of 2)\n",
+                retry);
+    run = run_split("secure_again_" + std::to_string(retry), 128, {"qos_dir=" + security});
   }
   ASSERT_EQ(run.ground_code, 0) << run.ground_log << "\n--- air ---\n" << run.air_log();
   ASSERT_EQ(run.air_code(), 0) << run.air_log();

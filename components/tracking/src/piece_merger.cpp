@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "uavmot/tracking/spatial_grid.hpp"
 #include "uavmot/tracking/split_merge.hpp"
 #include "uavmot/tracking/updater.hpp"
 
@@ -96,12 +97,25 @@ std::vector<bool> merge_track_pieces(const std::vector<TrackRecord>& tracks, std
     boxes[i] = box_of(kalman[i].mean);
     candidate[i] = region_motion(boxes[i], features, motion[i]);
   }
+  // Only neighbours can be pieces of one object: a grid keeps the cost linear in the number of tracks.
+  const double reach = scene.metres_to_px(options.piece_max_gap_m + options.max_object_width_m);
+  SpatialGrid grid;
+  for (size_t i = 0; i < n; ++i) {
+    if (candidate[i]) grid.insert(static_cast<int>(i), axis_aligned_bounds(boxes[i]));
+  }
   std::vector<bool> merged(n, false);
   const BoxMeasurementNoise noise = box_measurement_noise(options);
   for (size_t i = 0; i < n; ++i) {
-    for (size_t j = i + 1; j < n; ++j) {
-      if (merged[i] || !candidate[i]) break;
-      if (!candidate[j] || merged[j]) continue;
+    if (!candidate[i]) continue;
+    cv::Rect2d near = axis_aligned_bounds(boxes[i]);
+    near.x -= reach;
+    near.y -= reach;
+    near.width += 2.0 * reach;
+    near.height += 2.0 * reach;
+    for (const int k : grid.query(near)) {
+      const size_t j = static_cast<size_t>(k);
+      if (merged[i]) break;
+      if (j <= i || merged[j]) continue;
       const OrientedBox& a = boxes[i];
       const OrientedBox& b = boxes[j];
       const cv::Vec2d va = motion[i], vb = motion[j];
