@@ -69,12 +69,13 @@ bool are_pieces_of_one_object(const OrientedBox& a, const cv::Vec2d& motion_a, c
   }
   // The pieces of one vehicle move as one; a car closing in on the one ahead does not.
   if (scene.speed_mps(cv::norm(motion_a - motion_b)) > options.piece_max_speed_difference_mps) return false;
+  if (!(cv::norm(motion_a + motion_b) > 1e-9)) return false;  // no direction of travel (min speed 0)
   const PiecePair p = measure(a, b, motion_a + motion_b);
   // Each piece is one vehicle wide: a box over two cars side by side is no piece of anything.
   const double max_width = scene.metres_to_px(options.max_object_width_m);
   if (std::min(a.width, a.length) > max_width || std::min(b.width, b.length) > max_width) return false;
   // One behind the other in the same lane, not side by side or in the next lane.
-  if (std::abs(p.offset.y) > options.piece_max_lateral_m / scene.gsd_m) return false;
+  if (std::abs(p.offset.y) > scene.metres_to_px(options.piece_max_lateral_m)) return false;
   const double gap = std::abs(p.offset.x) - p.a.along - p.b.along;
   if (gap > scene.metres_to_px(options.piece_max_gap_m)) return false;
   const double length = std::abs(p.offset.x) + p.a.along + p.b.along;

@@ -1,15 +1,16 @@
 #pragma once
 // Pieces of one long vehicle (paper IV-C: "split regions of one object ... have similar motion and,
-// thus, are merged and assigned to one track"). A truck's cab and trailer, or a bus's two halves,
-// often carry their own moving features and blobs, so they start two tracks that then drive nose
-// to tail forever. Two tracks are pieces of one object when, in this frame, both were measured by
-// their own region, the features on them move at `piece_min_speed_mps` or faster (queues crawl bumper to bumper)
-// with velocities within `piece_max_speed_difference_mps` (a car closing in on the one ahead is
-// faster), one is behind the other along the direction of travel (the pieces' own box angles are
-// noise for a near-square cab), the gap between their boxes is below `piece_max_gap_m` (a car
-// keeps metres to the one ahead at speed; a trailer none), and together they are no longer than
-// `max_object_length_factor` vehicle lengths. The senior track takes the enclosing box
-// as its measurement and the junior one is absorbed.
+// thus, are merged and assigned to one track"). A truck's cab and trailer often carry their own
+// moving features and blobs, so they start two tracks that then drive nose to tail forever. Two
+// tracks measured by their own regions in this frame are pieces of one object when
+//  - the features on them move at `piece_min_speed_mps` or faster (queues crawl bumper to bumper)
+//    with velocities within `piece_max_speed_difference_mps` (a car closing in is faster);
+//  - one is behind the other along the direction of travel, centres at most `piece_max_lateral_m`
+//    apart across it (the boxes' own angles are noise for a near-square cab);
+//  - each box is at most `max_object_width_m` wide (not a box over two cars side by side);
+//  - the gap between the boxes is at most `piece_max_gap_m` (a car keeps metres at speed, a
+//    trailer none), and together they are at most `max_object_length_factor` vehicle lengths.
+// The senior track takes the box around both as its measurement; the junior one is absorbed.
 
 #include <vector>
 
