@@ -40,6 +40,9 @@ std::vector<ReceivedFrame> read_frames_csv(const std::string& path) {
   return frames;
 }
 
+// The source's camera clock: frame `index` is captured (index - 1) / rate after the stream start.
+int64_t capture_offset_ns(int64_t index, double rate) { return static_cast<int64_t>((index - 1) * 1e9 / rate + 0.5); }
+
 TEST(FrameTransport, LosslessDeliversEveryFrameInOrderBitIdentical) {
   const std::string out = testing::fresh_dir("frame_transport_lossless");
   ChildProcess sink({binary("uavmot-framesink"), "--out", out, "--domain", "11", "--idle-timeout", "60"}, out + "/sink.log");
@@ -79,14 +82,14 @@ TEST(FrameTransport, RateModeTimestampsAndPacesAtTheRequestedRate) {
   // with (no later than that start).
   ASSERT_GE(received.size(), 2u);
   const auto& second = received[1];
-  const int64_t start_ns = second.capture_time_ns - static_cast<int64_t>((second.index - 1) * 1e9 / kRate + 0.5);
+  const int64_t start_ns = second.capture_time_ns - capture_offset_ns(second.index, kRate);
   for (const auto& f : received) {
     if (f.index == 1) {
       EXPECT_LE(f.capture_time_ns, start_ns);
       EXPECT_GT(f.capture_time_ns, start_ns - 2'000'000'000LL) << "the first frame waited more than 2 s";
       continue;
     }
-    EXPECT_EQ(f.capture_time_ns - start_ns, static_cast<int64_t>((f.index - 1) * 1e9 / kRate + 0.5));
+    EXPECT_EQ(f.capture_time_ns - start_ns, capture_offset_ns(f.index, kRate));
   }
   // Publication is paced: the span of DDS source timestamps matches the rate (loose bound: a shared machine).
   const double span_s = (received.back().source_time_ns - received.front().source_time_ns) * 1e-9;
@@ -141,7 +144,7 @@ TEST(FrameTransport, LiveSourceSkipsFramesItIsLateForAndCountsThem) {
   EXPECT_LE(static_cast<long>(received.size()), published);
   // The camera clock starts once the first frame is acknowledged (see the rate test): measured
   // from the second frame received.
-  const int64_t start_ns = received[1].capture_time_ns - static_cast<int64_t>((received[1].index - 1) * 1e9 / kRate + 0.5);
+  const int64_t start_ns = received[1].capture_time_ns - capture_offset_ns(received[1].index, kRate);
   std::vector<double> late_ms;
   for (size_t i = 0; i < received.size(); ++i) {
     if (i > 0) {
@@ -152,7 +155,7 @@ TEST(FrameTransport, LiveSourceSkipsFramesItIsLateForAndCountsThem) {
     if (received[i].index == 1) {
       EXPECT_LE(received[i].capture_time_ns, start_ns);
     } else {
-      EXPECT_EQ(received[i].capture_time_ns - start_ns, static_cast<int64_t>((received[i].index - 1) * 1e9 / kRate + 0.5));
+      EXPECT_EQ(received[i].capture_time_ns - start_ns, capture_offset_ns(received[i].index, kRate));
     }
     late_ms.push_back((received[i].source_time_ns - received[i].capture_time_ns) * 1e-6);
   }

@@ -83,17 +83,7 @@ SyntheticScene truck_in_two_pieces() {
   SyntheticScene scene({truck}, static_camera());
   scene.edit_regions = [](int, std::vector<Region>& regions, const std::vector<TruthBox>&) {
     if (regions.size() != 1) return;
-    const OrientedBox whole = regions[0].box;
-    Region rear = regions[0], front = regions[0];
-    rear.box.length = 21.0;
-    front.box.length = 9.0;
-    const cv::Point2d r = from_box_coordinates(whole, {-(16.0 - 10.5) / 32.0, 0.0});
-    const cv::Point2d f = from_box_coordinates(whole, {(16.0 - 4.5) / 32.0, 0.0});
-    rear.box.cx = r.x;
-    rear.box.cy = r.y;
-    front.box.cx = f.x;
-    front.box.cy = f.y;
-    regions = {rear, front};
+    regions = {piece_of(regions[0], -(16.0 - 10.5) / 32.0, 21.0), piece_of(regions[0], (16.0 - 4.5) / 32.0, 9.0)};
   };
   return scene;
 }

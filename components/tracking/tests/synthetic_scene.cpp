@@ -31,6 +31,15 @@ std::function<cv::Point2d(int)> straight(cv::Point2d start, cv::Vec2d velocity) 
   return [=](int frame) { return start + cv::Point2d(velocity[0], velocity[1]) * (frame - 1); };
 }
 
+Region piece_of(const Region& whole, double centre_u, double length) {
+  Region piece = whole;
+  const cv::Point2d centre = from_box_coordinates(whole.box, {centre_u, 0.0});
+  piece.box.cx = centre.x;
+  piece.box.cy = centre.y;
+  piece.box.length = length;
+  return piece;
+}
+
 SyntheticScene::SyntheticScene(std::vector<ObjectPath> objects, CameraPath camera, SceneOptions options)
     : objects_(std::move(objects)), camera_(std::move(camera)), options_(options), rng_(options.seed) {
   std::uniform_real_distribution<double> u(-0.45, 0.45);

@@ -161,15 +161,8 @@ TEST(TrackerScenario, RegionSplitIntoTwoPiecesOfOneObjectStaysOneTrack) {
   // Frames 30-60: segmentation reports the car as its front and rear halves.
   scene.edit_regions = [](int frame, std::vector<Region>& regions, const std::vector<TruthBox>&) {
     if (frame < 30 || frame > 60 || regions.size() != 1) return;
-    const OrientedBox whole = regions[0].box;
-    Region front = regions[0];
-    Region rear = regions[0];
-    front.box.length = rear.box.length = 0.45 * whole.length;
-    front.box.cx = from_box_coordinates(whole, {0.27, 0.0}).x;
-    front.box.cy = from_box_coordinates(whole, {0.27, 0.0}).y;
-    rear.box.cx = from_box_coordinates(whole, {-0.27, 0.0}).x;
-    rear.box.cy = from_box_coordinates(whole, {-0.27, 0.0}).y;
-    regions = {front, rear};
+    const double half = 0.45 * regions[0].box.length;
+    regions = {piece_of(regions[0], 0.27, half), piece_of(regions[0], -0.27, half)};
   };
   Tracker tracker;
   const Score s = run_and_score(scene, tracker, run_for(90));
@@ -184,17 +177,8 @@ TEST(TrackerScenario, ObjectFragmentedFromItsFirstFrameEndsAsOneTrack) {
   SyntheticScene scene({car(1, {100, 200}, {1.5, 0.0})}, drifting_camera());
   scene.edit_regions = [](int frame, std::vector<Region>& regions, const std::vector<TruthBox>&) {
     if (frame > 12 || regions.size() != 1) return;
-    const OrientedBox whole = regions[0].box;
-    Region front = regions[0];
-    Region rear = regions[0];
-    front.box.length = rear.box.length = 0.45 * whole.length;
-    const cv::Point2d f = from_box_coordinates(whole, {0.27, 0.0});
-    const cv::Point2d r = from_box_coordinates(whole, {-0.27, 0.0});
-    front.box.cx = f.x;
-    front.box.cy = f.y;
-    rear.box.cx = r.x;
-    rear.box.cy = r.y;
-    regions = {front, rear};
+    const double half = 0.45 * regions[0].box.length;
+    regions = {piece_of(regions[0], 0.27, half), piece_of(regions[0], -0.27, half)};
   };
   Tracker tracker;
   RunOptions run = run_for(80);
