@@ -201,6 +201,7 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   std::vector<LiveFeature> survivors;
   survivors.reserve(index.size());
   for (size_t k = 0; k < index.size(); ++k) {
+    if (is_tracking_slip(h, src[k], dst[k], features_[index[k]].velocity, o.max_step_error_px)) continue;
     LiveFeature f = std::move(features_[index[k]]);
     f.position = dst[k];
     ++f.age;

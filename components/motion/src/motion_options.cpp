@@ -9,7 +9,7 @@ MotionOptions load_motion_options(const ConfigNode& node) {
   node.expect_only({"max_features", "cell_size_px", "features_per_cell", "min_distance_px", "corner_block_size",
                     "min_corner_response", "border_px", "empty_cell_retry_frames", "lk_window_px", "pyramid_levels", "lk_max_iterations",
                     "lk_epsilon_px", "backward_levels", "max_forward_backward_px",
-                    "predict_with_previous_homography", "recover_large_motion", "robust_method", "ransac_threshold_px",
+                    "predict_with_previous_homography", "recover_large_motion", "max_step_error_px", "robust_method", "ransac_threshold_px",
                     "ransac_max_iterations", "ransac_confidence", "min_inliers", "min_inlier_ratio",
                     "min_tracked_ratio", "max_motion_fraction", "max_scale_change", "refine", "refine_loss",
                     "refine_loss_scale_px", "refine_max_iterations", "refine_max_points", "refine_exclude_moving", "background_flow_degree", "history_frames",
@@ -31,6 +31,7 @@ MotionOptions load_motion_options(const ConfigNode& node) {
   node.read("backward_levels", o.backward_levels, 0, 6);
   node.read("max_forward_backward_px", o.max_forward_backward_px, 0.01, 10.0);
   node.read("predict_with_previous_homography", o.predict_with_previous_homography);
+  node.read("max_step_error_px", o.max_step_error_px, 0.0, 1000.0);
   node.read_choice("robust_method", o.robust_method, {"ransac", "magsac"});
   node.read("ransac_threshold_px", o.ransac_threshold_px, 0.1, 50.0);
   node.read("ransac_max_iterations", o.ransac_max_iterations, 10, 100000);

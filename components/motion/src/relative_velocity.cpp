@@ -70,4 +70,11 @@ bool MotionClassifier::update(const VelocityEstimate& e, int track_frames, const
   return moving_;
 }
 
+bool is_tracking_slip(const Homography& h, const cv::Point2f& from, const cv::Point2f& to, const VelocityEstimate& known,
+                      double max_step_error_px) {
+  if (!(max_step_error_px > 0.0) || !known.available) return false;
+  const cv::Point2d expected = apply_homography(h, cv::Point2d(from)) + cv::Point2d(known.velocity[0], known.velocity[1]);
+  return cv::norm(cv::Point2d(to) - expected) > max_step_error_px;
+}
+
 }  // namespace uavmot::motion

@@ -38,6 +38,12 @@ class FeatureHistory {
 
 VelocityEstimate estimate_velocity(const FeatureHistory& history, const MotionOptions& options);
 
+// A step from `from` (previous frame) to `to` that lands more than `max_step_error_px` from where the
+// camera motion `h` and the feature's known velocity put it: the LK window latched onto another corner
+// (often near the border), which is no motion. False while the velocity is unknown or the check is off (0).
+bool is_tracking_slip(const Homography& h, const cv::Point2f& from, const cv::Point2f& to, const VelocityEstimate& known,
+                      double max_step_error_px);
+
 // Moving/stationary decision with hysteresis: a feature becomes moving after confirm_frames
 // consecutive frames with a significant speed (> max(moving_sigma_factor * sigma,
 // min_moving_speed_px)) and stops after confirm_frames consecutive frames below release_ratio

@@ -5,7 +5,8 @@
 
 namespace uavmot::tracking {
 
-void record_frame(TrackRecord& track, bool region_hit, bool supported, const TrackerOptions& options) {
+void record_frame(TrackRecord& track, bool region_hit, bool supported, const TrackerOptions& options,
+                  bool may_bridge_gap) {
   ++track.age;
   const uint32_t window_mask = options.confirm_window >= 32 ? 0xffffffffu : ((1u << options.confirm_window) - 1u);
   track.hit_history = ((track.hit_history << 1) | (region_hit ? 1u : 0u)) & window_mask;
@@ -18,12 +19,22 @@ void record_frame(TrackRecord& track, bool region_hit, bool supported, const Tra
     if (hits >= options.confirm_hits || by_features) track.state = TrackState::Confirmed;
     return;
   }
-  track.state = track.frames_since_update == 0 ? TrackState::Confirmed : TrackState::Coasting;
+  const bool bridged = may_bridge_gap && static_cast<int>(track.frames_since_update) <= options.gap_frames &&
+                       static_cast<int>(track.hits) >= options.gap_min_hits;
+  track.state = (track.frames_since_update == 0 || bridged) ? TrackState::Confirmed : TrackState::Coasting;
 }
 
 bool inside_view(const OrientedBox& box, const TrackerOptions& options) {
   if (options.image_width <= 0 || options.image_height <= 0) return true;
   return box.cx >= -0.5 && box.cy >= -0.5 && box.cx < options.image_width - 0.5 && box.cy < options.image_height - 0.5;
+}
+
+bool wholly_inside_view(const OrientedBox& box, const TrackerOptions& options) {
+  if (options.image_width <= 0 || options.image_height <= 0) return true;
+  for (const auto& c : box_corners(box)) {
+    if (c.x < -0.5 || c.y < -0.5 || c.x >= options.image_width - 0.5 || c.y >= options.image_height - 0.5) return false;
+  }
+  return true;
 }
 
 Fate decide_fate(const TrackRecord& track, bool in_view, const TrackerOptions& options) {

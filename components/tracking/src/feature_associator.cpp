@@ -13,20 +13,35 @@ double median_of(std::vector<double> values) {
   return n % 2 == 1 ? values[n / 2] : 0.5 * (values[n / 2 - 1] + values[n / 2]);
 }
 
+const TrackedFeature* find_by_id(const std::vector<TrackedFeature>& sorted, uint64_t id) {
+  const auto it = std::lower_bound(sorted.begin(), sorted.end(), id,
+                                   [](const TrackedFeature& f, uint64_t value) { return f.id < value; });
+  return (it != sorted.end() && it->id == id) ? &*it : nullptr;
+}
+
+void sort_by_id(std::vector<TrackedFeature>& features) {
+  std::stable_sort(features.begin(), features.end(),
+                   [](const TrackedFeature& a, const TrackedFeature& b) { return a.id < b.id; });
+}
+
 }  // namespace
 
-FeatureIndex::FeatureIndex(std::vector<TrackedFeature> features) : features_(std::move(features)) {
-  std::stable_sort(features_.begin(), features_.end(),
-                   [](const TrackedFeature& a, const TrackedFeature& b) { return a.id < b.id; });
+FeatureIndex::FeatureIndex(std::vector<TrackedFeature> moving, std::vector<TrackedFeature> stopped,
+                           uint32_t stopped_link_min_frames)
+    : features_(std::move(moving)), stopped_(std::move(stopped)), stopped_link_min_frames_(stopped_link_min_frames) {
+  sort_by_id(features_);
+  sort_by_id(stopped_);
   for (size_t i = 0; i < features_.size(); ++i) {
     grid_.insert(static_cast<int>(i), cv::Rect2d(features_[i].position.x, features_[i].position.y, 0.0, 0.0));
   }
 }
 
-const TrackedFeature* FeatureIndex::find(uint64_t id) const {
-  const auto it = std::lower_bound(features_.begin(), features_.end(), id,
-                                   [](const TrackedFeature& f, uint64_t value) { return f.id < value; });
-  return (it != features_.end() && it->id == id) ? &*it : nullptr;
+const TrackedFeature* FeatureIndex::find(uint64_t id) const { return find_by_id(features_, id); }
+
+const TrackedFeature* FeatureIndex::find_linked(const FeatureLink& link) const {
+  if (const TrackedFeature* f = find_by_id(features_, link.feature_id)) return f;
+  if (stopped_link_min_frames_ == 0 || link.frames_linked < stopped_link_min_frames_) return nullptr;
+  return find_by_id(stopped_, link.feature_id);
 }
 
 std::vector<int> FeatureIndex::inside(const OrientedBox& box) const {
@@ -70,7 +85,7 @@ void prune_feature_links(TrackRecord& track, const OrientedBox& predicted, const
   std::vector<FeatureLink> kept;
   std::vector<const TrackedFeature*> kept_features;
   for (const auto& link : track.features) {
-    const TrackedFeature* f = features.find(link.feature_id);
+    const TrackedFeature* f = features.find_linked(link);
     if (f == nullptr) continue;  // vanished or no longer moving
     const cv::Point2d uv = to_box_coordinates(predicted, f->position);
     if (std::abs(uv.x) > limit || std::abs(uv.y) > limit) continue;
@@ -108,7 +123,7 @@ std::optional<cv::Point2d> reconstruct_centre(const TrackRecord& track, const Or
   std::vector<double> cxs;
   std::vector<double> cys;
   for (const auto& link : track.features) {
-    const TrackedFeature* f = features.find(link.feature_id);
+    const TrackedFeature* f = features.find_linked(link);
     if (f == nullptr) continue;
     const cv::Point2d c = centre_from_feature(predicted, link, f->position);
     cxs.push_back(c.x);
@@ -116,6 +131,15 @@ std::optional<cv::Point2d> reconstruct_centre(const TrackRecord& track, const Or
   }
   if (static_cast<int>(cxs.size()) < min_features || cxs.empty()) return std::nullopt;
   return cv::Point2d(median_of(cxs), median_of(cys));
+}
+
+std::optional<cv::Vec2d> linked_velocity(const TrackRecord& track, const FeatureIndex& features, int min_features) {
+  std::vector<cv::Vec2d> velocities;
+  for (const auto& link : track.features) {
+    if (const TrackedFeature* f = features.find_linked(link)) velocities.push_back(f->velocity);
+  }
+  if (static_cast<int>(velocities.size()) < min_features || velocities.empty()) return std::nullopt;
+  return median_velocity(velocities);
 }
 
 void link_new_features(std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
@@ -166,7 +190,7 @@ void link_new_features(std::vector<TrackRecord>& tracks, const std::vector<Orien
 void refresh_feature_links(TrackRecord& track, const OrientedBox& posterior, const FeatureIndex& features,
                            double smoothing) {
   for (auto& link : track.features) {
-    const TrackedFeature* f = features.find(link.feature_id);
+    const TrackedFeature* f = features.find_linked(link);
     if (f == nullptr) continue;
     const cv::Point2d uv = to_box_coordinates(posterior, f->position);
     link.box_uv = (1.0 - smoothing) * link.box_uv + smoothing * uv;

@@ -56,6 +56,8 @@ OrientedBox union_along_axis(const OrientedBox& a, const PiecePair& p) {
   return out;
 }
 
+constexpr int kSettledHits = 10;
+
 bool senior(const TrackRecord& a, const TrackRecord& b) { return a.hits != b.hits ? a.hits > b.hits : a.id < b.id; }
 
 }  // namespace
@@ -97,6 +99,11 @@ std::vector<bool> merge_track_pieces(const std::vector<TrackRecord>& tracks, std
     if (!measured[i]) continue;
     boxes[i] = box_of(kalman[i].mean);
     candidate[i] = region_motion(boxes[i], features, motion[i]);
+    // A featureless piece (a dark bar across a trailer) moves as its filter says once that has settled.
+    if (!candidate[i] && static_cast<int>(tracks[i].hits) >= kSettledHits) {
+      motion[i] = velocity_of(kalman[i].mean);
+      candidate[i] = true;
+    }
   }
   // Only neighbours can be pieces of one object: a grid keeps the cost linear in the number of tracks.
   const double reach = scene.metres_to_px(options.piece_max_gap_m + options.max_object_width_m);

@@ -29,7 +29,7 @@ namespace {
 int linked_features_inside(const TrackRecord& track, const OrientedBox& box, const FeatureIndex& features) {
   int n = 0;
   for (const auto& link : track.features) {
-    const TrackedFeature* f = features.find(link.feature_id);
+    const TrackedFeature* f = features.find_linked(link);
     if (f != nullptr && box_contains(box, f->position)) ++n;
   }
   return n;

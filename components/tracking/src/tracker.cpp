@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "uavmot/core/error.hpp"
 #include "uavmot/tracking/deleter.hpp"
@@ -57,18 +58,32 @@ std::vector<OrientedBox> select_regions(const SegmentationResult& segmentation, 
   return out;
 }
 
-std::vector<TrackedFeature> select_features(const MotionEstimate& motion, uint64_t& rejected) {
-  std::vector<TrackedFeature> out;
+// This frame's valid features: the moving ones, and the stopped ones that a track links to (a link
+// made while they moved).
+FeatureIndex select_features(const MotionEstimate& motion, const std::vector<TrackRecord>& tracks,
+                             const TrackerOptions& options, uint64_t& rejected) {
+  std::vector<uint64_t> linked;
+  if (options.stopped_link_min_frames > 0) {
+    for (const auto& t : tracks) {
+      for (const auto& link : t.features) linked.push_back(link.feature_id);
+    }
+    std::sort(linked.begin(), linked.end());
+  }
+  std::vector<TrackedFeature> moving;
+  std::vector<TrackedFeature> stopped;
   for (const auto& f : motion.features) {
-    if (!f.moving) continue;
     if (!std::isfinite(f.position.x) || !std::isfinite(f.position.y) || !std::isfinite(f.velocity[0]) ||
         !std::isfinite(f.velocity[1])) {
-      ++rejected;
+      if (f.moving) ++rejected;
       continue;
     }
-    out.push_back(f);
+    if (f.moving) {
+      moving.push_back(f);
+    } else if (std::binary_search(linked.begin(), linked.end(), f.id)) {
+      stopped.push_back(f);
+    }
   }
-  return out;
+  return FeatureIndex(std::move(moving), std::move(stopped), static_cast<uint32_t>(options.stopped_link_min_frames));
 }
 
 Track to_output(const TrackRecord& record) {
@@ -115,7 +130,7 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
     h = identity_homography();
   }
   const std::vector<OrientedBox> regions = select_regions(segmentation, options_, state_.rejected_regions);
-  const FeatureIndex features(select_features(motion, state_.rejected_features));
+  const FeatureIndex features = select_features(motion, state_.tracks, options_, state_.rejected_features);
 
   // 1. Predict every track with the camera motion as control input.
   const ProcessNoise noise = process_noise(options_);
@@ -161,9 +176,20 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   std::vector<bool> may_link(n, false);
   for (size_t i = 0; i < n; ++i) {
     const TrackMeasurement& m = resolved.measurements[i];
+    // The features' own motion: the track's velocity, and for a vehicle under way its heading.
+    const auto feature_velocity = linked_velocity(state_.tracks[i], features, options_.min_reconstruction_features);
+    std::optional<double> heading;
+    if (feature_velocity && options_.heading_sigma_deg > 0.0 && cv::norm(*feature_velocity) >= options_.heading_min_speed_px) {
+      heading = std::atan2((*feature_velocity)[1], (*feature_velocity)[0]) * 180.0 / M_PI;
+    }
+    if (feature_velocity && options_.feature_velocity_sigma_px > 0.0) {
+      kalman[i] = update_with_velocity(kalman[i], *feature_velocity, options_.feature_velocity_sigma_px);
+    }
+    if (heading) kalman[i] = update_with_heading(kalman[i], *heading, options_.heading_sigma_deg);
     if (m.kind == MeasurementKind::Box) {
-      if (m.size_jump) open_size_uncertainty(kalman[i], m.box);
-      kalman[i] = update_with_box(kalman[i], m.box, box_noise, options_.min_box_size_px);
+      const OrientedBox box = heading ? box_along_heading(m.box, *heading) : m.box;
+      if (m.size_jump) open_size_uncertainty(kalman[i], box);
+      kalman[i] = update_with_box(kalman[i], box, box_noise, options_.min_box_size_px);
       region_hit[i] = true;
       may_link[i] = true;
     } else if (m.kind == MeasurementKind::Centre) {
@@ -199,7 +225,7 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   for (size_t i = 0; i < n; ++i) {
     TrackRecord& t = state_.tracks[i];
     if (absorbed[i]) continue;  // a piece of another track's object
-    record_frame(t, region_hit[i], supported[i], options_);
+    record_frame(t, region_hit[i], supported[i], options_, wholly_inside_view(posterior[i], options_));
     switch (decide_fate(t, inside_view(posterior[i], options_), options_)) {
       case Fate::Keep:
         live_boxes.push_back(posterior[i]);

@@ -79,4 +79,32 @@ KalmanState update_with_position(const KalmanState& state, const cv::Point2d& ce
   return kalman_update<2>(state, h, innovation, r);
 }
 
+OrientedBox box_along_heading(const OrientedBox& region, double heading_deg) {
+  // Second moments of the region's rectangle, projected on the heading's axes: a rectangle of the same
+  // spread, without the corner-to-corner inflation of an enclosing box.
+  const double delta = (region.angle_deg - heading_deg) * M_PI / 180.0;
+  const double c = std::cos(delta), s = std::sin(delta);
+  const double l2 = region.length * region.length, w2 = region.width * region.width;
+  const double as = std::abs(s), ac = std::abs(c);
+  const double width = 0.5 * (std::sqrt(l2 * s * s + w2 * c * c) + region.length * as + region.width * ac);
+  const double length = 0.5 * (std::sqrt(l2 * c * c + w2 * s * s) + region.length * ac + region.width * as);
+  return OrientedBox{region.cx, region.cy, width, length, normalize_axis_angle_deg(heading_deg)};
+}
+
+KalmanState update_with_velocity(const KalmanState& state, const cv::Vec2d& velocity, double sigma_px) {
+  Eigen::Matrix<double, 2, kStateSize> h = Eigen::Matrix<double, 2, kStateSize>::Zero();
+  h(0, kVx) = h(1, kVy) = 1.0;
+  Eigen::Matrix<double, 2, 1> innovation(velocity[0] - state.mean(kVx), velocity[1] - state.mean(kVy));
+  Eigen::Matrix<double, 2, 2> r = Eigen::Matrix<double, 2, 2>::Identity() * (sigma_px * sigma_px);
+  return kalman_update<2>(state, h, innovation, r);
+}
+
+KalmanState update_with_heading(const KalmanState& state, double heading_deg, double sigma_deg) {
+  Eigen::Matrix<double, 1, kStateSize> h = Eigen::Matrix<double, 1, kStateSize>::Zero();
+  h(0, kAngle) = 1.0;
+  Eigen::Matrix<double, 1, 1> innovation(axis_angle_difference_deg(heading_deg, state.mean(kAngle)));
+  Eigen::Matrix<double, 1, 1> r(sigma_deg * sigma_deg);
+  return kalman_update<1>(state, h, innovation, r);
+}
+
 }  // namespace uavmot::tracking

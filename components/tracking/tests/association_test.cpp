@@ -112,6 +112,32 @@ TEST_F(FeatureAssignment, OutliersInPositionAndMotionAreRemoved) {
   EXPECT_EQ(ids(0), expected);
 }
 
+TEST_F(FeatureAssignment, LinkedVelocityIsTheMedianOfThePresentLinks) {
+  tracks_[0].features = {FeatureLink{1, {0, 0}, 5}, FeatureLink{2, {0.1, 0}, 5}, FeatureLink{3, {-0.1, 0}, 5},
+                         FeatureLink{4, {0.2, 0}, 5}};
+  // Feature 4 vanished; of 1..3 the median per axis is (0.9, 0.1), whatever one outlier says.
+  const FeatureIndex index({feature(1, {100, 100}, {0.9, 0.1}), feature(2, {101, 100}, {1.0, 0.0}),
+                            feature(3, {99, 100}, {0.2, 0.3})});
+  const auto v = linked_velocity(tracks_[0], index, 2);
+  ASSERT_TRUE(v.has_value());
+  EXPECT_NEAR((*v)[0], 0.9, 1e-12);
+  EXPECT_NEAR((*v)[1], 0.1, 1e-12);
+  EXPECT_FALSE(linked_velocity(tracks_[0], index, 4).has_value());
+}
+
+TEST_F(FeatureAssignment, AStoppedFeatureSupportsOnlyAnEstablishedLink) {
+  // The car halts: its features are still tracked but no longer moving.
+  TrackedFeature halted = feature(1, {100, 100}, {0.01, 0.0});
+  halted.moving = false;
+  const FeatureIndex index({}, {halted}, 10);
+  EXPECT_NE(index.find_linked(FeatureLink{1, {0, 0}, 10}), nullptr);  // linked while moving for 10 frames
+  EXPECT_EQ(index.find_linked(FeatureLink{1, {0, 0}, 9}), nullptr);   // a brief link: no support
+  EXPECT_EQ(index.find(1), nullptr);                                   // and never a candidate for new links
+  EXPECT_TRUE(index.inside(OrientedBox{100, 100, 5, 15, 0}).empty());
+  const FeatureIndex disabled({}, {halted}, 0);
+  EXPECT_EQ(disabled.find_linked(FeatureLink{1, {0, 0}, 100}), nullptr);
+}
+
 TEST(SplitMerge, MergedRegionIsReplacedByFeatureReconstructions) {
   // Two tracks side by side, one region covering both: each track's centre comes from its features.
   std::vector<TrackRecord> tracks(2);

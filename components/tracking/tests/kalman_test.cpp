@@ -123,5 +123,52 @@ TEST(KalmanUpdate, NearSquareRegionBarelyMovesTheAngle) {
   EXPECT_GT(elongated.mean(kAngle), 5.0 * std::abs(square.mean(kAngle)));
 }
 
+TEST(KalmanUpdate, FeatureVelocityCorrectsAWrongVelocityAtOnce) {
+  // The filter believes (2, -1) px/frame; the linked features say the car moves (0.5, 0.4).
+  const KalmanState s = predict(car_state(), identity_homography(), ProcessNoise{});
+  const KalmanState u = update_with_velocity(s, {0.5, 0.4}, 0.1);
+  EXPECT_NEAR(u.mean(kVx), 0.5, 0.08);  // most of the 1.5 px/frame error gone in one update
+  EXPECT_NEAR(u.mean(kVy), 0.4, 0.08);
+  EXPECT_LT(u.covariance(kVx, kVx), 0.1 * 0.1);
+  EXPECT_DOUBLE_EQ(u.mean(kLength), s.mean(kLength));  // velocity says nothing about size
+}
+
+TEST(KalmanUpdate, HeadingPullsTheAxisAcrossTheWrapAround) {
+  // Axis at 85 deg, travel towards -88 deg (the same axis 7 deg on): the update turns through 90.
+  const KalmanState s = car_state(85.0);
+  const KalmanState u = update_with_heading(s, -88.0, 1.0);
+  EXPECT_LT(std::abs(axis_angle_difference_deg(u.mean(kAngle), 92.0)), 1.0);
+  EXPECT_LT(u.covariance(kAngle, kAngle), s.covariance(kAngle, kAngle));
+}
+
+TEST(BoxAlongHeading, AnAlignedRegionIsUnchanged) {
+  const OrientedBox region{100, 50, 5, 15, 30};
+  const OrientedBox b = box_along_heading(region, 30.0 - 180.0);  // travelling the other way: same axis
+  EXPECT_NEAR(b.width, 5.0, 1e-9);
+  EXPECT_NEAR(b.length, 15.0, 1e-9);
+  EXPECT_NEAR(axis_angle_difference_deg(b.angle_deg, 30.0), 0.0, 1e-9);
+  EXPECT_DOUBLE_EQ(b.cx, 100.0);
+  EXPECT_DOUBLE_EQ(b.cy, 50.0);
+}
+
+TEST(BoxAlongHeading, ABarAcrossTheCarBecomesItsWidth) {
+  // A window bar 2 px long in the direction of travel and 5 px across it: width 5, length 2, angle = heading.
+  const OrientedBox bar{100, 50, 2, 5, 90};
+  const OrientedBox b = box_along_heading(bar, 0.0);
+  EXPECT_NEAR(b.width, 5.0, 1e-9);
+  EXPECT_NEAR(b.length, 2.0, 1e-9);
+  EXPECT_NEAR(b.angle_deg, 0.0, 1e-9);
+}
+
+TEST(BoxAlongHeading, ATiltedRegionIsSpreadBetweenItsEllipseAndItsRectangle) {
+  const OrientedBox region{0, 0, 5, 15, 30};
+  const OrientedBox b = box_along_heading(region, 0.0);
+  const double c = std::cos(30.0 * M_PI / 180.0), s = std::sin(30.0 * M_PI / 180.0);
+  const double ellipse_across = std::hypot(15 * s, 5 * c), rectangle_across = 15 * s + 5 * c;
+  EXPECT_GT(b.width, ellipse_across);
+  EXPECT_LT(b.width, rectangle_across);
+  EXPECT_GT(b.length, b.width);
+}
+
 }  // namespace
 }  // namespace uavmot::tracking

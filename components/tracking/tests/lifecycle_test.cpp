@@ -66,6 +66,40 @@ TEST(Lifecycle, ConfirmedCoastsThenGoesDormant) {
   EXPECT_EQ(decide_fate(s, true, o), Fate::Keep);
 }
 
+TEST(Lifecycle, AnEstablishedTrackBridgesShortGapsInsideTheView) {
+  TrackerOptions o;
+  o.gap_frames = 2;
+  o.gap_min_hits = 15;
+  TrackRecord t = new_track();
+  t.state = TrackState::Confirmed;
+  t.hits = 15;
+  record_frame(t, false, false, o);
+  record_frame(t, false, false, o);
+  EXPECT_EQ(t.state, TrackState::Confirmed);  // two frames without a region: still reported
+  record_frame(t, false, false, o);
+  EXPECT_EQ(t.state, TrackState::Coasting);   // a third: coasting
+  // A young track, or one at the image border (leaving), coasts at once.
+  TrackRecord young = new_track();
+  young.state = TrackState::Confirmed;
+  young.hits = 14;
+  record_frame(young, false, false, o);
+  EXPECT_EQ(young.state, TrackState::Coasting);
+  TrackRecord leaving = new_track();
+  leaving.state = TrackState::Confirmed;
+  leaving.hits = 100;
+  record_frame(leaving, false, false, o, /*may_bridge_gap=*/false);
+  EXPECT_EQ(leaving.state, TrackState::Coasting);
+}
+
+TEST(Lifecycle, WhollyInsideViewNeedsEveryCorner) {
+  TrackerOptions o;
+  EXPECT_TRUE(wholly_inside_view(OrientedBox{-100, -100, 5, 15, 0}, o));  // image size unknown
+  o.image_width = 200;
+  o.image_height = 100;
+  EXPECT_TRUE(wholly_inside_view(OrientedBox{100, 50, 5, 15, 0}, o));
+  EXPECT_FALSE(wholly_inside_view(OrientedBox{195, 50, 5, 15, 0}, o));  // centre inside, nose outside
+}
+
 TEST(Lifecycle, LeavingTheViewHidesAtOnce) {
   TrackerOptions o;
   o.image_width = 100;

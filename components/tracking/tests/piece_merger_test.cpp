@@ -113,5 +113,24 @@ TEST(PieceMerger, WithoutTheRuleTheTruckStaysTwoTracks) {
   EXPECT_GT(s.mean_length_error, 5.0);
 }
 
+TEST(PieceMerger, AFeaturelessCabIsMergedOnceItsFilterHasSettled) {
+  // No feature is found on the cab (a dark, uniform roof): its motion comes from its own track's
+  // filter once that has 10 region hits, so cab and trailer still end as one track.
+  SyntheticScene scene = truck_in_two_pieces();
+  Tracker tracker;
+  RunOptions run = run_for(100);
+  run.score_from_frame = 30;
+  const cv::Vec2d velocity(1.2, 0.3);
+  const cv::Point2d axis = cv::Point2d(velocity[0], velocity[1]) / cv::norm(velocity);
+  run.edit_motion = [&](MotionEstimate& motion) {
+    const cv::Point2d centre = cv::Point2d(120, 240) + cv::Point2d(velocity[0], velocity[1]) * (motion.frame_index - 1.0);
+    std::erase_if(motion.features, [&](const TrackedFeature& f) { return (f.position - centre).dot(axis) > 6.0; });
+  };
+  const Score s = run_and_score(scene, tracker, run);
+  EXPECT_EQ(s.matched, s.truth_instances);
+  EXPECT_EQ(s.unmatched_confirmed_tracks, 0);
+  EXPECT_LT(s.mean_length_error, 2.0);
+}
+
 }  // namespace
 }  // namespace uavmot::tracking::testing

@@ -210,6 +210,7 @@ TEST(TrackerScenario, VehicleLeavingAndReenteringTheView) {
   };
   SyntheticScene scene({car(1, {200, 240}, {1.0, 0.2})}, pan);
   Tracker tracker;
+  tracker.set_image_size(SceneOptions{}.image_width, SceneOptions{}.image_height);  // as the pipeline does
   std::vector<std::pair<int, uint64_t>> visible_ids;  // (frame, id) while visible
   for (int k = 1; k <= 130; ++k) {
     const SyntheticFrame f = scene.next();
@@ -278,6 +279,39 @@ TEST(TrackerScenario, StopAndGoKeepsItsIdentity) {
   EXPECT_EQ(s.track_ids_of_truth.at(1).size(), 1u);
   EXPECT_EQ(s.all_confirmed_ids.size(), 1u);
   EXPECT_GT(s.matched, 0.95 * s.truth_instances);
+}
+
+// Frames in which a confirmed track covers a car that drives 40 frames at 1.5 px/frame (13 m/s), brakes
+// to a halt over 60 frames (5.5 m/s^2) and stands for 100 frames (no region, no moving feature).
+int frames_reported_while_standing(const TrackerOptions& options) {
+  ObjectPath o;
+  o.truth_id = 1;
+  o.ground_centre = [](int frame) {
+    const double v = 1.5, braking = 60.0, t = std::clamp(frame - 41.0, 0.0, braking);
+    return cv::Point2d(100 + v * (std::min(frame, 41) - 1) + v * t - 0.5 * v / braking * t * t, 200);
+  };
+  o.heading_deg = [](int) { return 0.0; };
+  SyntheticScene scene({o}, drifting_camera());
+  Tracker tracker(options);
+  int reported = 0;
+  for (int k = 1; k <= 200; ++k) {
+    const SyntheticFrame f = scene.next();
+    const TrackList out = tracker.process(f.motion, f.segmentation);
+    if (k <= 100) continue;
+    for (const auto& t : out.tracks) {
+      const cv::Point2d d(t.box.cx - f.truth[0].box.cx, t.box.cy - f.truth[0].box.cy);
+      if (t.state == TrackState::Confirmed && cv::norm(d) < 2.0) ++reported;
+    }
+  }
+  return reported;
+}
+
+TEST(TrackerScenario, ACarThatHaltsStaysReportedWhileItStands) {
+  // Its features, linked while it drove, are still tracked after it stops: they hold the track in place.
+  EXPECT_EQ(frames_reported_while_standing(TrackerOptions{}), 100);
+  TrackerOptions links_end_when_features_stop;
+  links_end_when_features_stop.stopped_link_min_frames = 0;
+  EXPECT_LT(frames_reported_while_standing(links_end_when_features_stop), 10);
 }
 
 TEST(TrackerScenario, BusyRoadWithMissesAndClutter) {

@@ -16,7 +16,7 @@ struct MotionOptions {
   double min_distance_px = 5.0;     // no new corner closer than this to any live feature
   int corner_block_size = 5;        // Shi-Tomasi neighbourhood (px)
   double min_corner_response = 2e-3;  // absolute minimum eigenvalue (cv::cornerMinEigenVal units)
-  int border_px = 8;                // features this close to the image border are not used
+  int border_px = 6;                // features this close to the image border are not used
   int empty_cell_retry_frames = 4;  // a cell that gave no new corner waits this many frames (staggered)
 
   // --- Pyramidal Lucas-Kanade with forward-backward check ----------------------------------
@@ -28,6 +28,7 @@ struct MotionOptions {
   double max_forward_backward_px = 0.5;
   bool predict_with_previous_homography = true;  // initial flow from the last camera motion
   bool recover_large_motion = true;  // if that fails, retry from a phase-correlation translation
+  double max_step_error_px = 3.0;    // a step this far from camera motion + own velocity is a slip (0 = off)
 
   // --- Frame-to-frame homography ----------------------------------------------------------
   std::string robust_method = "ransac";  // "ransac" or "magsac" (cv::findHomography)

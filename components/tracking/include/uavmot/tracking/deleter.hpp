@@ -3,7 +3,8 @@
 // `confirm_window` frames; a confirmed track without region or feature support coasts on its
 // prediction for `max_coast_frames`, then waits hidden (dormant) at its last measured ground position
 // for `reacquire_max_frames` to be re-acquired, then is deleted. Tentative tracks that miss more than
-// `tentative_max_misses` frames in a row, or fail to confirm in time, are deleted at once.
+// `tentative_max_misses` frames in a row, or fail to confirm in time, are deleted at once. An
+// established track (`gap_min_hits`) missing up to `gap_frames` in a row is still reported confirmed.
 
 #include "uavmot/core/homography.hpp"
 #include "uavmot/tracking/tracker_options.hpp"
@@ -16,8 +17,14 @@ enum class Fate { Keep, Dormant, Delete };
 // False when the image size is known and the box centre lies outside the image.
 bool inside_view(const OrientedBox& box, const TrackerOptions& options);
 
+// True unless the image size is known and a corner of the box lies outside the image.
+bool wholly_inside_view(const OrientedBox& box, const TrackerOptions& options);
+
 // Records one frame in the track's history: a region hit, support by features only, or nothing.
-void record_frame(TrackRecord& track, bool region_hit, bool supported, const TrackerOptions& options);
+// An established track that misses a frame stays confirmed for `gap_frames` when `may_bridge_gap`
+// (the caller passes false at the image border, where a vehicle misses its regions because it leaves).
+void record_frame(TrackRecord& track, bool region_hit, bool supported, const TrackerOptions& options,
+                  bool may_bridge_gap = true);
 
 // What happens to a live track after record_frame().
 // `in_view`: see inside_view(); a track that left the view goes dormant (confirmed) or is deleted.

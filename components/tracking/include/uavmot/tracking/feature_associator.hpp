@@ -16,18 +16,26 @@
 
 namespace uavmot::tracking {
 
-// This frame's valid moving features, by id and by position.
+// This frame's valid moving features, by id and by position; and the features that stopped moving but
+// are still tracked. A stopped feature only keeps supporting a link made while it moved, and only an
+// established one: a vehicle that slows to a halt keeps its track, a brief false motion does not.
 class FeatureIndex {
  public:
-  explicit FeatureIndex(std::vector<TrackedFeature> features);  // any order; stored ascending id
+  // Any order; stored ascending id. `stopped_link_min_frames` = 0: stopped features support nothing.
+  explicit FeatureIndex(std::vector<TrackedFeature> moving, std::vector<TrackedFeature> stopped = {},
+                        uint32_t stopped_link_min_frames = 0);
 
-  const std::vector<TrackedFeature>& all() const { return features_; }
-  const TrackedFeature* find(uint64_t id) const;
-  // Indices into all() of the features inside `box`, ascending.
+  const std::vector<TrackedFeature>& all() const { return features_; }  // the moving ones
+  const TrackedFeature* find(uint64_t id) const;                        // a moving one
+  // The feature behind a link: moving, or stopped when the link is at least stopped_link_min_frames old.
+  const TrackedFeature* find_linked(const FeatureLink& link) const;
+  // Indices into all() of the moving features inside `box`, ascending.
   std::vector<int> inside(const OrientedBox& box) const;
 
  private:
   std::vector<TrackedFeature> features_;
+  std::vector<TrackedFeature> stopped_;
+  uint32_t stopped_link_min_frames_ = 0;
   SpatialGrid grid_;
 };
 
@@ -48,6 +56,9 @@ void prune_feature_links(TrackRecord& track, const OrientedBox& predicted, const
 // Median of the centres reconstructed by the track's linked features; nullopt with too few links.
 std::optional<cv::Point2d> reconstruct_centre(const TrackRecord& track, const OrientedBox& predicted,
                                               const FeatureIndex& features, int min_features);
+
+// Median velocity of the track's linked features present this frame; nullopt with fewer than min_features.
+std::optional<cv::Vec2d> linked_velocity(const TrackRecord& track, const FeatureIndex& features, int min_features);
 
 // Links new features to tracks by the four criteria. `predicted` are the tracks' predictions
 // (criteria 2, 3), `posterior` their boxes after the update (stored box positions); only tracks with

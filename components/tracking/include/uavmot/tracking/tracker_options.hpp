@@ -45,6 +45,16 @@ struct TrackerOptions {
   double feature_reconstruction_outlier_px = 2.5;  // linked feature whose centre estimate is this far from the median
   double feature_uv_smoothing = 0.2;        // how fast a feature's stored box position follows unambiguous updates
   int min_reconstruction_features = 2;      // features needed to reconstruct a measurement
+  // A linked feature that stops moving (its vehicle slows to a halt) still supports the track once
+  // the link is this many region-updated frames old; 0: links end when their feature stops.
+  int stopped_link_min_frames = 10;
+  // The linked features' median velocity is a direct measurement of the track's ground velocity
+  // (a region only gives positions, whose differences are noisy); 0 disables.
+  double feature_velocity_sigma_px = 0.1;   // px/frame, 1-sigma per axis
+  // A vehicle drives along its length: above this speed (px/frame) the direction of the linked
+  // features' median velocity measures the box's axis angle with this 1-sigma; 0 disables.
+  double heading_min_speed_px = 0.3;
+  double heading_sigma_deg = 10.0;
 
   // --- Split and merge handling (split_merge) ----------------------------------------------
   // Regions inside one track's gate are fragments of one object when their motion agrees within the
@@ -64,7 +74,7 @@ struct TrackerOptions {
   // piece_max_gap_m, and each and both together fit the largest object above (piece_merger.hpp).
   // piece_max_gap_m = 0 disables.
   double piece_max_gap_m = 1.5;
-  double piece_min_speed_mps = 2.0;
+  double piece_min_speed_mps = 1.0;
   double piece_max_speed_difference_mps = 1.0;
   double piece_max_lateral_m = 0.9;
 
@@ -82,6 +92,10 @@ struct TrackerOptions {
   int confirm_min_features = 2;
   int tentative_max_misses = 1;             // a tentative track missing more frames in a row is deleted
   int max_coast_frames = 5;                 // a confirmed track coasts this many frames on prediction
+  // An established track (at least gap_min_hits region hits) that misses up to this many frames in a
+  // row is still reported as confirmed: one missing region is a segmentation gap, not a lost object.
+  int gap_frames = 2;
+  int gap_min_hits = 15;
   // Then it waits hidden (dormant) at its last measured ground position for this many frames and is
   // re-acquired with the same id by a new region nearby (stop-and-go); 0 deletes it at once.
   int reacquire_max_frames = 375;           // 15 s at 25 fps: longer than a red light
