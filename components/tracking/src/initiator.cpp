@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "uavmot/tracking/kalman_model.hpp"
+#include "uavmot/tracking/piece_merger.hpp"
 #include "uavmot/tracking/spatial_grid.hpp"
 #include "uavmot/tracking/split_merge.hpp"
 
@@ -48,6 +49,32 @@ int find_dormant(const OrientedBox& region, const cv::Vec2d* region_velocity, co
   return best;
 }
 
+// A blob less than half a vehicle right at the nose or tail of a confirmed moving track, in its lane
+// (the piece rule), is part of that vehicle: a truck's cab or a windscreen, not a new vehicle.
+bool part_of_a_live_vehicle(const OrientedBox& region, const std::vector<OrientedBox>& live_boxes,
+                            const std::vector<TrackRecord>& live, const SpatialGrid& grid, const TrackerOptions& options,
+                            const SceneInfo& scene) {
+  if (!(options.piece_max_gap_m > 0.0)) return false;
+  const double vehicle_area = scene.metres_to_px(scene.vehicle_length_m) * scene.metres_to_px(scene.vehicle_width_m);
+  if (box_area(region) >= 0.5 * vehicle_area) return false;
+  const double reach = scene.metres_to_px(2.0 * options.piece_max_gap_m + options.max_object_width_m);
+  cv::Rect2d near = axis_aligned_bounds(region);
+  near.x -= reach;
+  near.y -= reach;
+  near.width += 2.0 * reach;
+  near.height += 2.0 * reach;
+  // The track's box often misses the end of the vehicle nearest the blob: allow twice the piece gap.
+  TrackerOptions wider = options;
+  wider.piece_max_gap_m = 2.0 * options.piece_max_gap_m;
+  for (const int i : grid.query(near)) {
+    const TrackRecord& t = live[static_cast<size_t>(i)];
+    if (t.state == TrackState::Tentative) continue;
+    const cv::Vec2d v(t.mean[kVx], t.mean[kVy]);
+    if (are_pieces_of_one_object(live_boxes[static_cast<size_t>(i)], v, region, v, wider, scene)) return true;
+  }
+  return false;
+}
+
 }  // namespace
 
 void initiate_tracks(const std::vector<int>& free_regions, const std::vector<OrientedBox>& regions,
@@ -67,7 +94,7 @@ void initiate_tracks(const std::vector<int>& free_regions, const std::vector<Ori
       covered = covered || intersection_area(region, live_boxes[static_cast<size_t>(i)]) > options.init_max_overlap_fraction * area;
     }
     for (const auto& s : started) covered = covered || intersection_area(region, s) > options.init_max_overlap_fraction * area;
-    if (covered) continue;
+    if (covered || part_of_a_live_vehicle(region, live_boxes, state.tracks, live_grid, options, scene)) continue;
     cv::Vec2d velocity(0.0, 0.0);
     const bool has_motion = region_motion(region, features, velocity);
     const KalmanState kalman = initial_state(

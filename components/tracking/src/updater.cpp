@@ -99,12 +99,34 @@ KalmanState update_with_velocity(const KalmanState& state, const cv::Vec2d& velo
   return kalman_update<2>(state, h, innovation, r);
 }
 
+namespace {
+
+KalmanState relabel_box(const KalmanState& state) {
+  KalmanState out = state;
+  // The same box with width and length exchanged and the axis turned by 90 deg: a permutation of the
+  // state, so the covariance is permuted alike.
+  Eigen::PermutationMatrix<kStateSize> swap;
+  swap.setIdentity();
+  swap.indices()(kWidth) = kLength;
+  swap.indices()(kLength) = kWidth;
+  out.mean = swap * state.mean;
+  out.covariance = swap * state.covariance * swap.transpose();
+  out.mean(kAngle) = normalize_axis_angle_deg(state.mean(kAngle) + 90.0);
+  return out;
+}
+
+}  // namespace
+
 KalmanState update_with_heading(const KalmanState& state, double heading_deg, double sigma_deg) {
+  // A box whose "length" lies across the direction of travel is labelled the wrong way round: relabel
+  // it first, or the heading would pull its axis through 90 deg instead of naming the long side.
+  const bool across = std::abs(axis_angle_difference_deg(heading_deg, state.mean(kAngle))) > 45.0;
+  const KalmanState labelled = across ? relabel_box(state) : state;
   Eigen::Matrix<double, 1, kStateSize> h = Eigen::Matrix<double, 1, kStateSize>::Zero();
   h(0, kAngle) = 1.0;
-  Eigen::Matrix<double, 1, 1> innovation(axis_angle_difference_deg(heading_deg, state.mean(kAngle)));
+  Eigen::Matrix<double, 1, 1> innovation(axis_angle_difference_deg(heading_deg, labelled.mean(kAngle)));
   Eigen::Matrix<double, 1, 1> r(sigma_deg * sigma_deg);
-  return kalman_update<1>(state, h, innovation, r);
+  return kalman_update<1>(labelled, h, innovation, r);
 }
 
 }  // namespace uavmot::tracking

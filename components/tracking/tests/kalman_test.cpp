@@ -141,6 +141,21 @@ TEST(KalmanUpdate, HeadingPullsTheAxisAcrossTheWrapAround) {
   EXPECT_LT(u.covariance(kAngle, kAngle), s.covariance(kAngle, kAngle));
 }
 
+TEST(KalmanUpdate, HeadingAcrossTheBoxRelabelsItInsteadOfTurningIt) {
+  // A box 13.7 wide and 7.7 long at -41 deg is the same box as 7.7 x 13.7 at 49 deg; travelling along
+  // 50 deg, the heading names its long side rather than dragging the axis through 90 deg.
+  KalmanState s = initial_state(OrientedBox{100, 50, 13.7, 7.7, -41.0}, cv::Vec2d(0.65, 0.78), 0.1, BoxMeasurementNoise{});
+  s.covariance(kWidth, kWidth) = 4.0;
+  s.covariance(kLength, kLength) = 1.0;
+  const KalmanState u = update_with_heading(s, 50.0, 10.0);
+  EXPECT_NEAR(u.mean(kLength), 13.7, 1e-9);
+  EXPECT_NEAR(u.mean(kWidth), 7.7, 1e-9);
+  EXPECT_NEAR(u.covariance(kLength, kLength), 4.0, 1e-9);  // the variances travel with their sides
+  EXPECT_NEAR(u.covariance(kWidth, kWidth), 1.0, 1e-9);
+  EXPECT_GT(u.mean(kAngle), 49.0);
+  EXPECT_LT(u.mean(kAngle), 50.0);
+}
+
 TEST(BoxAlongHeading, AnAlignedRegionIsUnchanged) {
   const OrientedBox region{100, 50, 5, 15, 30};
   const OrientedBox b = box_along_heading(region, 30.0 - 180.0);  // travelling the other way: same axis

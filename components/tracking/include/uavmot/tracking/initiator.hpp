@@ -1,6 +1,8 @@
 #pragma once
 // Track initiation (paper IV-A): regions that validate no track (or that split handling left over)
-// start tentative tracks, unless they mostly lie inside a live track. A region near a dormant track's
+// start tentative tracks, unless they mostly lie inside a live track, or are a blob less than half a
+// vehicle right at the nose or tail of a confirmed moving track (its cab or windscreen, by the piece
+// rule of piece_merger.hpp with twice the gap). A region near a dormant track's
 // last measured ground position, of similar size, re-acquires that track with its old id (stop-and-go).
 // Features never start tracks (paper IV-B).
 
