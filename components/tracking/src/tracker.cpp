@@ -107,6 +107,21 @@ Track to_output(const TrackRecord& record) {
 
 bool by_id(const TrackRecord& a, const TrackRecord& b) { return a.id < b.id; }
 
+// The linked features' own motion: their median velocity updates the track's velocity and, for a
+// vehicle under way, its direction names the box's axis. Returns that heading (deg), if any.
+std::optional<double> update_with_feature_motion(KalmanState& kalman, const TrackRecord& track,
+                                                 const FeatureIndex& features, const TrackerOptions& options) {
+  const auto velocity = linked_velocity(track, features, options.min_reconstruction_features);
+  if (!velocity) return std::nullopt;
+  if (options.feature_velocity_sigma_px > 0.0) {
+    kalman = update_with_velocity(kalman, *velocity, options.feature_velocity_sigma_px);
+  }
+  if (!(options.heading_sigma_deg > 0.0) || cv::norm(*velocity) < options.heading_min_speed_px) return std::nullopt;
+  const double heading = std::atan2((*velocity)[1], (*velocity)[0]) * 180.0 / M_PI;
+  kalman = update_with_heading(kalman, heading, options.heading_sigma_deg);
+  return heading;
+}
+
 // A track's velocity is observed once it has two region hits; before that it is a guess.
 bool velocity_known(const TrackRecord& t) { return t.hits >= 2; }
 
@@ -176,16 +191,7 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   std::vector<bool> may_link(n, false);
   for (size_t i = 0; i < n; ++i) {
     const TrackMeasurement& m = resolved.measurements[i];
-    // The features' own motion: the track's velocity, and for a vehicle under way its heading.
-    const auto feature_velocity = linked_velocity(state_.tracks[i], features, options_.min_reconstruction_features);
-    std::optional<double> heading;
-    if (feature_velocity && options_.heading_sigma_deg > 0.0 && cv::norm(*feature_velocity) >= options_.heading_min_speed_px) {
-      heading = std::atan2((*feature_velocity)[1], (*feature_velocity)[0]) * 180.0 / M_PI;
-    }
-    if (feature_velocity && options_.feature_velocity_sigma_px > 0.0) {
-      kalman[i] = update_with_velocity(kalman[i], *feature_velocity, options_.feature_velocity_sigma_px);
-    }
-    if (heading) kalman[i] = update_with_heading(kalman[i], *heading, options_.heading_sigma_deg);
+    const std::optional<double> heading = update_with_feature_motion(kalman[i], state_.tracks[i], features, options_);
     if (m.kind == MeasurementKind::Box) {
       const OrientedBox box = heading ? box_along_heading(m.box, *heading) : m.box;
       if (m.size_jump) open_size_uncertainty(kalman[i], box);
