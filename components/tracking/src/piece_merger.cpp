@@ -56,6 +56,7 @@ OrientedBox union_along_axis(const OrientedBox& a, const PiecePair& p) {
   return out;
 }
 
+// Region hits after which a track's own Kalman velocity is trusted as its motion.
 constexpr int kSettledHits = 10;
 
 bool senior(const TrackRecord& a, const TrackRecord& b) { return a.hits != b.hits ? a.hits > b.hits : a.id < b.id; }
