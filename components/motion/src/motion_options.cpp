@@ -91,6 +91,7 @@ void validate(const MotionOptions& o) {
           "backward_levels must be in [0, pyramid_levels]");
   require(o.lk_max_iterations >= 1 && o.lk_epsilon_px > 0.0, "LK stopping criteria must be positive");
   require(o.max_forward_backward_px > 0.0, "max_forward_backward_px must be > 0");
+  require(o.max_step_error_px >= 0.0, "max_step_error_px must be >= 0 (0 turns the slip check off)");
   require(o.robust_method == "ransac" || o.robust_method == "magsac", "robust_method must be ransac or magsac");
   require(o.ransac_threshold_px > 0.0, "ransac_threshold_px must be > 0");
   require(o.ransac_max_iterations >= 10, "ransac_max_iterations must be >= 10");

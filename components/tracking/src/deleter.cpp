@@ -24,15 +24,25 @@ void record_frame(TrackRecord& track, bool region_hit, bool supported, const Tra
   track.state = (track.frames_since_update == 0 || bridged) ? TrackState::Confirmed : TrackState::Coasting;
 }
 
+namespace {
+
+// Pixel centres run from 0 to size - 1, so the image covers [-0.5, size - 0.5).
+bool inside_image(double x, double y, const TrackerOptions& options) {
+  return x >= -0.5 && y >= -0.5 && x < options.image_width - 0.5 && y < options.image_height - 0.5;
+}
+
+bool image_size_known(const TrackerOptions& options) { return options.image_width > 0 && options.image_height > 0; }
+
+}  // namespace
+
 bool inside_view(const OrientedBox& box, const TrackerOptions& options) {
-  if (options.image_width <= 0 || options.image_height <= 0) return true;
-  return box.cx >= -0.5 && box.cy >= -0.5 && box.cx < options.image_width - 0.5 && box.cy < options.image_height - 0.5;
+  return !image_size_known(options) || inside_image(box.cx, box.cy, options);
 }
 
 bool wholly_inside_view(const OrientedBox& box, const TrackerOptions& options) {
-  if (options.image_width <= 0 || options.image_height <= 0) return true;
+  if (!image_size_known(options)) return true;
   for (const auto& c : box_corners(box)) {
-    if (c.x < -0.5 || c.y < -0.5 || c.x >= options.image_width - 0.5 || c.y >= options.image_height - 0.5) return false;
+    if (!inside_image(c.x, c.y, options)) return false;
   }
   return true;
 }

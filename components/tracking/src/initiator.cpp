@@ -58,15 +58,10 @@ bool part_of_a_live_vehicle(const OrientedBox& region, const std::vector<Oriente
   const double vehicle_area = scene.metres_to_px(scene.vehicle_length_m) * scene.metres_to_px(scene.vehicle_width_m);
   if (box_area(region) >= 0.5 * vehicle_area) return false;
   const double reach = scene.metres_to_px(2.0 * options.piece_max_gap_m + options.max_object_width_m);
-  cv::Rect2d near = axis_aligned_bounds(region);
-  near.x -= reach;
-  near.y -= reach;
-  near.width += 2.0 * reach;
-  near.height += 2.0 * reach;
   // The track's box often misses the end of the vehicle nearest the blob: allow twice the piece gap.
   TrackerOptions wider = options;
   wider.piece_max_gap_m = 2.0 * options.piece_max_gap_m;
-  for (const int i : grid.query(near)) {
+  for (const int i : grid.query_near(axis_aligned_bounds(region), reach)) {
     const TrackRecord& t = live[static_cast<size_t>(i)];
     if (t.state == TrackState::Tentative) continue;
     const cv::Vec2d v(t.mean[kVx], t.mean[kVy]);

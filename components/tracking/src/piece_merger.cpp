@@ -116,12 +116,7 @@ std::vector<bool> merge_track_pieces(const std::vector<TrackRecord>& tracks, std
   const BoxMeasurementNoise noise = box_measurement_noise(options);
   for (size_t i = 0; i < n; ++i) {
     if (!candidate[i]) continue;
-    cv::Rect2d near = axis_aligned_bounds(boxes[i]);
-    near.x -= reach;
-    near.y -= reach;
-    near.width += 2.0 * reach;
-    near.height += 2.0 * reach;
-    for (const int k : grid.query(near)) {
+    for (const int k : grid.query_near(axis_aligned_bounds(boxes[i]), reach)) {
       const size_t j = static_cast<size_t>(k);
       if (merged[i]) break;
       if (j <= i || merged[j]) continue;

@@ -27,6 +27,10 @@ void SpatialGrid::insert(int index, const cv::Rect2d& bounds) {
   }
 }
 
+std::vector<int> SpatialGrid::query_near(const cv::Rect2d& bounds, double margin) const {
+  return query(cv::Rect2d(bounds.x - margin, bounds.y - margin, bounds.width + 2.0 * margin, bounds.height + 2.0 * margin));
+}
+
 std::vector<int> SpatialGrid::query(const cv::Rect2d& bounds) const {
   std::vector<int> out;
   const int64_t x0 = cell(bounds.x);

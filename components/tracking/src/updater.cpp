@@ -80,8 +80,8 @@ KalmanState update_with_position(const KalmanState& state, const cv::Point2d& ce
 }
 
 OrientedBox box_along_heading(const OrientedBox& region, double heading_deg) {
-  // Second moments of the region's rectangle, projected on the heading's axes: a rectangle of the same
-  // spread, without the corner-to-corner inflation of an enclosing box.
+  // Along and across the heading, the inscribed ellipse's extent understates a tilted blob and the
+  // rectangle's corner-to-corner extent overstates it; their mean measured best (docs/tracking.md).
   const double delta = (region.angle_deg - heading_deg) * M_PI / 180.0;
   const double c = std::cos(delta), s = std::sin(delta);
   const double l2 = region.length * region.length, w2 = region.width * region.width;

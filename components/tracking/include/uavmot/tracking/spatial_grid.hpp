@@ -18,6 +18,8 @@ class SpatialGrid {
   void insert(int index, const cv::Rect2d& bounds);
   // Indices whose bounds share a cell with `bounds`, ascending, without repeats.
   std::vector<int> query(const cv::Rect2d& bounds) const;
+  // The same for `bounds` grown by `margin` on every side (neighbours within that reach).
+  std::vector<int> query_near(const cv::Rect2d& bounds, double margin) const;
 
  private:
   int64_t cell(double coordinate) const;

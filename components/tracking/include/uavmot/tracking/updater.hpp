@@ -19,9 +19,9 @@ KalmanState update_with_box(const KalmanState& state, const OrientedBox& measure
 // variance by the squared size innovation so the filter adopts the new size within a few frames.
 void open_size_uncertainty(KalmanState& state, const OrientedBox& measured);
 
-// `region` re-described in the frame of a known direction of travel: angle = heading, length and
-// width = the region's spread along and across it (second moments of its rectangle). A vehicle's length lies along its travel, whatever
-// way a blob of windows or shadow happened to be elongated.
+// `region` re-described in the frame of a known direction of travel: angle = heading; length and
+// width = the mean of the extents of its rectangle and of its inscribed ellipse along and across it.
+// A vehicle's length lies along its travel, whatever way a blob of windows or shadow is elongated.
 OrientedBox box_along_heading(const OrientedBox& region, double heading_deg);
 
 // The ground velocity measured directly (the linked features' median velocity), 1-sigma per axis.
