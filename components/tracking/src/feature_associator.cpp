@@ -142,6 +142,14 @@ std::optional<cv::Vec2d> linked_velocity(const TrackRecord& track, const Feature
   return median_velocity(velocities);
 }
 
+std::vector<cv::Point2d> linked_positions(const TrackRecord& track, const FeatureIndex& features) {
+  std::vector<cv::Point2d> positions;
+  for (const auto& link : track.features) {
+    if (const TrackedFeature* f = features.find_linked(link)) positions.push_back(f->position);
+  }
+  return positions;
+}
+
 void link_new_features(std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
                        const std::vector<OrientedBox>& posterior, const std::vector<cv::Vec2d>& velocities,
                        const std::vector<bool>& velocity_known, const std::vector<bool>& may_link,

@@ -35,15 +35,18 @@ int linked_features_inside(const TrackRecord& track, const OrientedBox& box, con
   return n;
 }
 
+// True when `box` is wider or longer than `limit` (width across, height along; zero = no limit).
+bool larger_than(const OrientedBox& box, const cv::Size2d& limit) {
+  return limit.width > 0.0 && limit.height > 0.0 && (box.width > limit.width || box.length > limit.height);
+}
+
 // The fragments' union fits the predicted object enlarged by `factor`, and no vehicle is larger than
-// `largest` (width across, height along; zero = no limit): without that bound a box that took in
-// its neighbour in a queue would take in the next one too, growing a little every frame.
+// `largest`: without that bound a box that took in its neighbour in a queue would take in the next
+// one too, growing a little every frame.
 bool fits_inside(const OrientedBox& candidate, const OrientedBox& predicted, double factor, const cv::Size2d& largest) {
   const double big = std::max(predicted.length, predicted.width) * factor;
   const double small = std::min(predicted.length, predicted.width) * factor;
-  if (largest.width > 0.0 && largest.height > 0.0 && (candidate.width > largest.width || candidate.length > largest.height)) {
-    return false;
-  }
+  if (larger_than(candidate, largest)) return false;
   return candidate.length <= big && candidate.width <= std::max(small, 1.0) + 1.0;
 }
 
@@ -129,14 +132,21 @@ bool senior(const TrackRecord& a, const TrackRecord& b) { return a.hits != b.hit
 // tracked in pieces (over-segmentation at its first frames): the senior track keeps the region and
 // the others, if it was all they saw, are absorbed.
 void absorb_pieces(RegionAssociation& association, const std::vector<OrientedBox>& regions,
-                   const std::vector<TrackRecord>& tracks, const std::vector<cv::Vec2d>& velocities,
-                   const cv::Size2d& max_object_size_px, const TrackerOptions& options, std::vector<bool>& absorbed,
+                   const std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
+                   const std::vector<cv::Vec2d>& velocities,
+                   const cv::Size2d& max_object_size_px, const cv::Size2d& largest_object_px,
+                   const TrackerOptions& options, std::vector<bool>& absorbed,
                    std::vector<bool>& keepers) {
   if (max_object_size_px.width <= 0.0 || max_object_size_px.height <= 0.0) return;
   for (size_t r = 0; r < regions.size(); ++r) {
     auto& claimants = association.tracks_of_region[r];
     if (claimants.size() < 2) continue;
-    if (regions[r].length > max_object_size_px.height || regions[r].width > max_object_size_px.width) continue;
+    if (larger_than(regions[r], max_object_size_px)) continue;
+    // The tracks themselves must fit in one object too: two cars side by side at one speed may both
+    // claim a small blob between them, and neither is a piece of the other.
+    std::vector<OrientedBox> claimed;
+    for (const int t : claimants) claimed.push_back(predicted[static_cast<size_t>(t)]);
+    if (larger_than(enclosing_box(claimed), largest_object_px)) continue;
     size_t keeper = static_cast<size_t>(claimants.front());
     for (const int t : claimants) {
       if (senior(tracks[static_cast<size_t>(t)], tracks[keeper])) keeper = static_cast<size_t>(t);
@@ -171,7 +181,8 @@ SplitMergeResult resolve_split_merge(const RegionAssociation& gating, const std:
   result.measurements.resize(tracks.size());
   result.absorbed.assign(tracks.size(), false);
   std::vector<bool> keepers(tracks.size(), false);
-  absorb_pieces(association, regions, tracks, velocities, max_object_size_px, options, result.absorbed, keepers);
+  absorb_pieces(association, regions, tracks, predicted, velocities, max_object_size_px, largest_object_px, options,
+                result.absorbed, keepers);
   std::vector<int> leftovers;
   for (size_t t = 0; t < tracks.size(); ++t) {
     const auto& candidates = association.regions_of_track[t];

@@ -185,6 +185,7 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
                                                         max_object_size, features, options_, largest_object);
 
   // 5. Kalman update; a track without a region may be carried by its features alone.
+  const double vehicle_length_px = scene_.metres_to_px(scene_.vehicle_length_m);
   const BoxMeasurementNoise box_noise = box_measurement_noise(options_);
   std::vector<bool> region_hit(n, false);
   std::vector<bool> supported(n, false);
@@ -193,7 +194,13 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
     const TrackMeasurement& m = resolved.measurements[i];
     const std::optional<double> heading = update_with_feature_motion(kalman[i], state_.tracks[i], features, options_);
     if (m.kind == MeasurementKind::Box) {
-      const OrientedBox box = heading ? box_along_heading(m.box, *heading) : m.box;
+      OrientedBox box = heading ? box_along_heading(m.box, *heading) : m.box;
+      if (heading && options_.feature_span_margin_px >= 0.0) {
+        const auto points = linked_positions(state_.tracks[i], features);
+        if (static_cast<int>(points.size()) >= options_.min_reconstruction_features) {
+          box = lengthen_to_cover(box, points, options_.feature_span_margin_px, vehicle_length_px);
+        }
+      }
       if (m.size_jump) open_size_uncertainty(kalman[i], box);
       kalman[i] = update_with_box(kalman[i], box, box_noise, options_.min_box_size_px);
       region_hit[i] = true;
@@ -223,7 +230,14 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   }
 
   // 6. Link new features (not during a merge, where the box is only reconstructed).
-  link_new_features(state_.tracks, predicted, posterior, velocities, known, may_link, features, options_);
+  // A vehicle's blob may be a part of it; its other features lie within a vehicle length.
+  std::vector<OrientedBox> link_area = predicted;
+  for (size_t i = 0; i < n; ++i) {
+    const bool under_way = known[i] && cv::norm(velocities[i]) >= options_.heading_min_speed_px;
+    const double reach = vehicle_length_px * options_.link_min_length_factor;
+    if (under_way && link_area[i].length < reach) link_area[i].length = reach;
+  }
+  link_new_features(state_.tracks, link_area, posterior, velocities, known, may_link, features, options_);
 
   // 7. Lifecycle.
   std::vector<TrackRecord> live;

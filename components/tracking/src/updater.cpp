@@ -91,6 +91,28 @@ OrientedBox box_along_heading(const OrientedBox& region, double heading_deg) {
   return OrientedBox{region.cx, region.cy, width, length, normalize_axis_angle_deg(heading_deg)};
 }
 
+OrientedBox lengthen_to_cover(const OrientedBox& box, const std::vector<cv::Point2d>& points, double margin,
+                              double max_length) {
+  if (box.length >= max_length) return box;
+  const double a = box.angle_deg * M_PI / 180.0;
+  const double c = std::cos(a), s = std::sin(a);
+  double lo = -0.5 * box.length, hi = 0.5 * box.length;
+  for (const auto& p : points) {
+    const double u = (p.x - box.cx) * c + (p.y - box.cy) * s;
+    lo = std::min(lo, u - margin);
+    hi = std::max(hi, u + margin);
+  }
+  // Grow each end in proportion to what it asked for, to max_length at most.
+  const double grow = (hi - lo) - box.length;
+  if (grow > max_length - box.length) {
+    const double keep = (max_length - box.length) / grow;
+    lo = -0.5 * box.length + keep * (lo + 0.5 * box.length);
+    hi = 0.5 * box.length + keep * (hi - 0.5 * box.length);
+  }
+  const double shift = 0.5 * (lo + hi);
+  return OrientedBox{box.cx + shift * c, box.cy + shift * s, box.width, hi - lo, box.angle_deg};
+}
+
 KalmanState update_with_velocity(const KalmanState& state, const cv::Vec2d& velocity, double sigma_px) {
   Eigen::Matrix<double, 2, kStateSize> h = Eigen::Matrix<double, 2, kStateSize>::Zero();
   h(0, kVx) = h(1, kVy) = 1.0;

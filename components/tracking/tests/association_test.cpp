@@ -237,6 +237,28 @@ TEST(SplitMerge, OneObjectTrackedInPiecesIsAbsorbedIntoTheSeniorTrack) {
   EXPECT_FALSE(w.absorbed[0] || w.absorbed[1]);
 }
 
+TEST(SplitMerge, TwoCarsSideBySideAreNotPiecesOfOne) {
+  // Two confirmed cars in adjacent lanes at one speed both claim a small blob between them.
+  std::vector<TrackRecord> tracks(2);
+  tracks[0].id = 1;
+  tracks[1].id = 2;
+  tracks[0].hits = tracks[1].hits = 20;
+  tracks[0].state = tracks[1].state = TrackState::Confirmed;
+  const std::vector<OrientedBox> predicted = {{100, 100, 6, 14, 0}, {100, 108, 6, 14, 0}};
+  const std::vector<OrientedBox> regions = {{100, 104, 5, 6, 0}};
+  const RegionAssociation a = associate_regions(regions, predicted, 0.05);
+  ASSERT_EQ(a.tracks_of_region[0].size(), 2u);
+  const cv::Size2d one_car(8.0, 20.0), largest_vehicle(11.0, 40.0);
+  const FeatureIndex none({});
+  const SplitMergeResult r =
+      resolve_split_merge(a, regions, tracks, predicted, velocities_of(2), one_car, none, TrackerOptions{}, largest_vehicle);
+  EXPECT_FALSE(r.absorbed[0] || r.absorbed[1]);
+  // Without a bound on the largest vehicle, the two would be taken for pieces of one.
+  const SplitMergeResult unbounded =
+      resolve_split_merge(a, regions, tracks, predicted, velocities_of(2), one_car, none, TrackerOptions{});
+  EXPECT_TRUE(unbounded.absorbed[1]);
+}
+
 TEST(SplitMerge, TentativeTrackDoesNotTurnARegionIntoAMerge) {
   std::vector<TrackRecord> tracks(2);
   tracks[0].state = TrackState::Confirmed;

@@ -185,5 +185,28 @@ TEST(BoxAlongHeading, ATiltedRegionIsSpreadBetweenItsEllipseAndItsRectangle) {
   EXPECT_GT(b.length, b.width);
 }
 
+TEST(LengthenToCover, TheBoxReachesPastTheOutermostFeatures) {
+  const OrientedBox windscreen{100, 100, 5, 6, 0};  // spans u = -3 .. 3
+  const OrientedBox b = lengthen_to_cover(windscreen, {{95, 101}, {104, 99}, {100, 100}}, 1.0, 20.0);
+  EXPECT_NEAR(b.length, 11.0, 1e-9);  // u = -6 .. 5
+  EXPECT_NEAR(b.cx, 99.5, 1e-9);
+  EXPECT_NEAR(b.cy, 100.0, 1e-9);
+  EXPECT_EQ(b.width, 5.0);
+  EXPECT_EQ(b.angle_deg, 0.0);
+}
+
+TEST(LengthenToCover, GrowsAlongATiltedAxisAndNoFurtherThanTheCap) {
+  const OrientedBox tilted{100, 100, 5, 6, 90};  // its axis points along +y
+  const OrientedBox b = lengthen_to_cover(tilted, {{100, 95}, {100, 104}}, 1.0, 8.0);
+  // It asked for 3 px at -u and 2 px at +u; the cap allows 2 in all, shared in that proportion.
+  EXPECT_NEAR(b.length, 8.0, 1e-9);
+  EXPECT_NEAR(b.cy, 100.0 + 0.5 * (-4.2 + 3.8), 1e-9);
+  EXPECT_NEAR(b.cx, 100.0, 1e-9);
+  // A box already as long as the cap, or points within it, leave it as it is.
+  const OrientedBox car{100, 100, 5, 14, 0};
+  EXPECT_EQ(lengthen_to_cover(car, {{80, 100}}, 1.0, 13.0).length, 14.0);
+  EXPECT_EQ(lengthen_to_cover(car, {{101, 100}}, 1.0, 20.0).cx, 100.0);
+}
+
 }  // namespace
 }  // namespace uavmot::tracking

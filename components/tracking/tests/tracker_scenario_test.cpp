@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <set>
 
 #include "synthetic_scene.hpp"
@@ -312,6 +313,38 @@ TEST(TrackerScenario, ACarThatHaltsStaysReportedWhileItStands) {
   TrackerOptions links_end_when_features_stop;
   links_end_when_features_stop.stopped_link_min_frames = 0;
   EXPECT_LT(frames_reported_while_standing(links_end_when_features_stop), 10);
+}
+
+// A road-grey car: segmentation finds only its windscreen (the front 40 %) from its first frame, while
+// its features sit all along it.
+Score car_seen_by_its_windscreen(const TrackerOptions& options) {
+  SyntheticScene scene({car(1, {100, 200}, {1.5, 0.4})}, drifting_camera());
+  scene.edit_regions = [](int, std::vector<Region>& regions, const std::vector<TruthBox>&) {
+    if (regions.size() == 1) regions = {piece_of(regions[0], 0.3, 0.4 * regions[0].box.length)};
+  };
+  Tracker tracker(options);
+  RunOptions run = run_for(120);
+  run.score_from_frame = 40;
+  return run_and_score(scene, tracker, run);
+}
+
+TEST(TrackerScenario, ACarSeenOnlyByItsWindscreenKeepsItsLength) {
+  const Score s = car_seen_by_its_windscreen(TrackerOptions{});
+  TrackerOptions blob_only;
+  blob_only.feature_span_margin_px = -1.0;
+  blob_only.link_min_length_factor = 0.0;
+  const Score b = car_seen_by_its_windscreen(blob_only);
+  TrackerOptions links_in_the_prediction_only;
+  links_in_the_prediction_only.link_min_length_factor = 0.0;
+  const Score p = car_seen_by_its_windscreen(links_in_the_prediction_only);
+  std::printf("windscreen only: length error %.2f px, position %.2f px (links in the prediction only: %.2f, %.2f; "
+              "from the blob alone: %.2f, %.2f)\n",
+              s.mean_length_error, s.mean_position_error, p.mean_length_error, p.mean_position_error,
+              b.mean_length_error, b.mean_position_error);
+  EXPECT_EQ(s.matched, s.truth_instances);
+  EXPECT_LT(s.mean_length_error, 3.0);
+  EXPECT_GT(p.mean_length_error, s.mean_length_error + 1.0);
+  EXPECT_GT(b.mean_length_error, 6.0);
 }
 
 TEST(TrackerScenario, BusyRoadWithMissesAndClutter) {

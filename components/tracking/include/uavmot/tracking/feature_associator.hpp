@@ -60,6 +60,9 @@ std::optional<cv::Point2d> reconstruct_centre(const TrackRecord& track, const Or
 // Median velocity of the track's linked features present this frame; nullopt with fewer than min_features.
 std::optional<cv::Vec2d> linked_velocity(const TrackRecord& track, const FeatureIndex& features, int min_features);
 
+// Positions of the track's linked features present this frame (moving or established stopped links).
+std::vector<cv::Point2d> linked_positions(const TrackRecord& track, const FeatureIndex& features);
+
 // Links new features to tracks by the four criteria. `predicted` are the tracks' predictions
 // (criteria 2, 3), `posterior` their boxes after the update (stored box positions); only tracks with
 // may_link[i] get new features. `velocity_known[i]`: compare with the track's velocity, else with the

@@ -55,6 +55,14 @@ struct TrackerOptions {
   // features' median velocity measures the box's axis angle with this 1-sigma; 0 disables.
   double heading_min_speed_px = 0.3;
   double heading_sigma_deg = 10.0;
+  // With a known heading, a region is lengthened to reach this far (px) beyond the linked features'
+  // ends, up to SceneInfo's vehicle length: a road-grey car's blob may be its windscreen alone, while
+  // its features sit on both window bars. Negative disables.
+  double feature_span_margin_px = 2.0;
+  // Criteria (2) and (3) look for new features of a track under way in its prediction lengthened to
+  // this many x SceneInfo's vehicle length, so a blob of one part of a car still links the rest.
+  // 0 keeps the prediction as it is (the paper).
+  double link_min_length_factor = 1.3;
 
   // --- Split and merge handling (split_merge) ----------------------------------------------
   // Regions inside one track's gate are fragments of one object when their motion agrees within the

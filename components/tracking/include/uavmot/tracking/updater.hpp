@@ -24,6 +24,12 @@ void open_size_uncertainty(KalmanState& state, const OrientedBox& measured);
 // A vehicle's length lies along its travel, whatever way a blob of windows or shadow is elongated.
 OrientedBox box_along_heading(const OrientedBox& region, double heading_deg);
 
+// `box` lengthened along its axis, no wider, until it reaches `margin` px beyond every point's
+// projection on the axis, but to no more than `max_length`. The vehicle's own features lie on it,
+// even where its blob does not.
+OrientedBox lengthen_to_cover(const OrientedBox& box, const std::vector<cv::Point2d>& points, double margin,
+                              double max_length);
+
 // The ground velocity measured directly (the linked features' median velocity), 1-sigma per axis.
 KalmanState update_with_velocity(const KalmanState& state, const cv::Vec2d& velocity, double sigma_px);
 
