@@ -1,7 +1,10 @@
 // The tracking component is SIGKILLed in the middle of a `paper` sequence; the launcher respawns it,
 // it restores its saved state, gets what was published while it was down, and the tracks go on
 // with the same ids: byte-identical to an undisturbed run (issue 10 asks for at most 1 point of
-// MOTA lost; nothing is).
+// MOTA lost; nothing is). The killed run starts on a domain where every participant id has left
+// shared-memory files behind, as on a host that has seen many crashes. Before the participants
+// reclaimed abandoned ports, such a host let a respawned tracker take over its killed predecessor's
+// ports (eProsima/Fast-DDS#4728): it never received a sample, about one run in ten here.
 
 #include <signal.h>
 
@@ -58,6 +61,21 @@ double mota(const std::string& sequence, const std::string& out) {
   return result.tracking.empty() ? 0.0 : result.tracking.front().mota;
 }
 
+// What a host that has run for long looks like: every participant id of `domain` has left
+// shared-memory files behind (each SIGKILL leaves two ports' worth). The participants must still
+// choose ids no live process holds, and never one a live writer still pushes into.
+void leave_abandoned_ports_on_every_id(int domain) {
+  for (int id = 0; id < 120; ++id) {
+    const int metatraffic = 7400 + 250 * domain + 10 + 2 * id;
+    for (const int port : {metatraffic, metatraffic + 1}) {
+      const std::string name = "/dev/shm/fastrtps_port" + std::to_string(port);
+      for (const std::string& file : {name, name + "_el", "/dev/shm/sem.fastrtps_port" + std::to_string(port) + "_mutex"}) {
+        std::ofstream(file).put('\n');
+      }
+    }
+  }
+}
+
 TEST(TrackerRestart, SigkilledTrackerContinuesWithTheSameTrackIds) {
   const std::string root = testing::fresh_dir("tracker_restart");
   const std::string sequence = root + "/paper";
@@ -70,6 +88,7 @@ TEST(TrackerRestart, SigkilledTrackerContinuesWithTheSameTrackIds) {
                            root + "/undisturbed.log");
   ASSERT_EQ(undisturbed.wait(std::chrono::seconds(300)), 0) << undisturbed.log();
 
+  leave_abandoned_ports_on_every_id(36);
   ChildProcess launch({binary("uavmot"), "launch", kProfile, "--input", sequence, "--out", root + "/killed", "--set",
                        "domain=36"},
                       root + "/killed.log");

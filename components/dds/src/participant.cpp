@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <mutex>
+#include <optional>
 #include <set>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
@@ -12,6 +13,7 @@
 #include <fastrtps/utils/IPLocator.h>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
+#include <spdlog/spdlog.h>
 #include <unistd.h>
 
 #include "shm_ports.hpp"
@@ -88,9 +90,18 @@ Participant::Participant(DdsOptions options) : options_(std::move(options)) {
   }
   qos.name(options_.participant_name + "@" + std::to_string(::getpid()));
   if (!options_.discovery_server.empty()) use_discovery_server(qos, options_.discovery_server);
+  std::optional<ParticipantIdLock> id_lock;
   if (qos.wire_protocol().participant_id < 0 && uses_shared_memory(qos)) {
     // Never take over the ports of a crashed process (see shm_ports.hpp).
-    qos.wire_protocol().participant_id = fresh_participant_id(options_.domain_id);
+    id_lock.emplace(options_.domain_id);
+    int id = fresh_participant_id(options_.domain_id);
+    if (id < 0) {
+      const int freed = reclaim_abandoned_ports(options_.domain_id, ports_in_use());
+      spdlog::info("domain {}: every participant id had left shared-memory ports; freed {} that no process holds",
+                   options_.domain_id, freed);
+      id = fresh_participant_id(options_.domain_id);
+    }
+    qos.wire_protocol().participant_id = id;  // -1 (every id held by a live process): Fast DDS chooses
   }
   for (const FlowLimit& limit : options_.flow_limits) {
     auto descriptor = std::make_shared<eprosima::fastdds::rtps::FlowControllerDescriptor>();
@@ -103,6 +114,7 @@ Participant::Participant(DdsOptions options) : options_(std::move(options)) {
     qos.flow_controllers().push_back(descriptor);
   }
   participant_ = factory->create_participant(options_.domain_id, qos);
+  id_lock.reset();  // its ports exist now
   if (!participant_) throw InputError("cannot create a DDS participant on domain " + std::to_string(options_.domain_id));
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);

@@ -1,5 +1,11 @@
 #include "../src/shm_ports.hpp"
 
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/mman.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -34,6 +40,83 @@ TEST(ShmPorts, TheFirstIdWithoutAnySegmentOrLockFileIsChosen) {
   fs::remove_all(dir);
 }
 
+// All three files Fast DDS keeps for a port.
+void leave_port_files(const fs::path& dir, uint32_t port) {
+  const std::string name = "fastrtps_port" + std::to_string(port);
+  touch(dir / name);
+  touch(dir / (name + "_el"));
+  touch(dir / ("sem." + name + "_mutex"));
+}
+
+TEST(ShmPorts, OnlyPortsNoLiveProcessHoldsAreReclaimed) {
+  const fs::path dir = fs::temp_directory_path() / ("uavmot_shm_reclaim_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  for (int id = 0; id < 4; ++id) {
+    leave_port_files(dir, unicast_ports(36, id).first);
+    leave_port_files(dir, unicast_ports(36, id).second);
+  }
+  ASSERT_EQ(fresh_participant_id(36, dir.string(), 4), -1);
+  // Id 1's user port is still held by a live process (a listener, or a writer pushing into it).
+  const std::set<uint32_t> in_use = {unicast_ports(36, 1).second};
+  EXPECT_EQ(reclaim_abandoned_ports(36, in_use, dir.string(), 4), 3);
+  EXPECT_TRUE(fs::exists(dir / "fastrtps_port16412"));  // id 1's other port stays with it
+  EXPECT_TRUE(fs::exists(dir / "sem.fastrtps_port16413_mutex"));
+  EXPECT_FALSE(fs::exists(dir / "fastrtps_port16410"));
+  EXPECT_FALSE(fs::exists(dir / "fastrtps_port16411_el"));
+  EXPECT_FALSE(fs::exists(dir / "sem.fastrtps_port16417_mutex"));
+  EXPECT_EQ(fresh_participant_id(36, dir.string(), 4), 0);
+  EXPECT_EQ(reclaim_abandoned_ports(36, in_use, dir.string(), 4), 0);  // nothing more to free
+  fs::remove_all(dir);
+}
+
+TEST(ShmPorts, PortsInUseAreTheOnesAProcessHoldsOpenOrMapped) {
+  const fs::path dir = fs::temp_directory_path() / ("uavmot_shm_in_use_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  touch(dir / "fastrtps_port64001_el");
+  touch(dir / "fastrtps_port64002");
+  touch(dir / "fastrtps_port64003");
+  EXPECT_FALSE(ports_in_use().count(64001));
+  std::ifstream lock_file(dir / "fastrtps_port64001_el");  // held open, as a listener holds its lock
+  const int fd = ::open((dir / "fastrtps_port64002").c_str(), O_RDONLY);
+  ASSERT_GE(fd, 0);
+  void* mapped = ::mmap(nullptr, 1, PROT_READ, MAP_SHARED, fd, 0);  // mapped, as a writer maps a port
+  ASSERT_NE(mapped, MAP_FAILED);
+  ::close(fd);
+  const std::set<uint32_t> in_use = ports_in_use();
+  EXPECT_TRUE(in_use.count(64001));
+  EXPECT_TRUE(in_use.count(64002));
+  EXPECT_FALSE(in_use.count(64003));
+  ::munmap(mapped, 1);
+  fs::remove_all(dir);
+}
+
+// Whether another process can take the id lock of `domain` in `dir` right now.
+bool another_process_can_lock(const fs::path& dir, int domain) {
+  const pid_t child = ::fork();
+  if (child == 0) {
+    const std::string file = (dir / ("uavmot_participant_ids_" + std::to_string(domain) + ".lock")).string();
+    const int fd = ::open(file.c_str(), O_RDWR);
+    ::_exit(fd >= 0 && ::flock(fd, LOCK_EX | LOCK_NB) == 0 ? 0 : 1);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return WIFEXITED(status) && WEXITSTATUS(status) == 0;
+}
+
+TEST(ShmPorts, ChoosingAnIdIsOneProcessAtATimePerDomain) {
+  const fs::path dir = fs::temp_directory_path() / ("uavmot_shm_lock_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  {
+    ParticipantIdLock held(36, dir.string());
+    EXPECT_FALSE(another_process_can_lock(dir, 36));
+  }
+  EXPECT_TRUE(another_process_can_lock(dir, 36));
+  fs::remove_all(dir);
+}
+
 // The ports whose lock files this process holds open.
 std::set<std::string> held_ports() {
   std::set<std::string> held;
@@ -64,6 +147,36 @@ TEST(ShmPorts, AParticipantDoesNotTakeOverTheSegmentsACrashedProcessLeft) {
         << "expected the ports of participant id 1";
   }
   fs::remove(zombie);
+}
+
+TEST(ShmPorts, AParticipantFindsAnIdWhenEveryIdHasLeftPortsBehind) {
+  // A host where crashed participants have left ports on every id of the domain: without reclaiming,
+  // Fast DDS would put the new participant on a zombie's ports (eProsima/Fast-DDS#4728).
+  constexpr int kDomain = 92;
+  for (int id = 0; id < 120; ++id) {
+    leave_port_files("/dev/shm", unicast_ports(kDomain, id).first);
+    leave_port_files("/dev/shm", unicast_ports(kDomain, id).second);
+  }
+  {
+    DdsOptions options;
+    options.domain_id = kDomain;
+    Participant participant(options);
+    const auto held = held_ports();
+    const auto [meta0, user0] = unicast_ports(kDomain, 0);
+    EXPECT_TRUE(held.count("fastrtps_port" + std::to_string(meta0) + "_el") ||
+                held.count("fastrtps_port" + std::to_string(user0) + "_el"))
+        << "expected the reclaimed ports of participant id 0";
+    EXPECT_FALSE(fs::exists("/dev/shm/fastrtps_port" + std::to_string(unicast_ports(kDomain, 119).first)));
+  }
+  for (int id = 0; id < 120; ++id) {
+    for (const uint32_t port : {unicast_ports(kDomain, id).first, unicast_ports(kDomain, id).second}) {
+      const std::string name = "/dev/shm/fastrtps_port" + std::to_string(port);
+      std::error_code ec;
+      fs::remove(name, ec);
+      fs::remove(name + "_el", ec);
+      fs::remove("/dev/shm/sem.fastrtps_port" + std::to_string(port) + "_mutex", ec);
+    }
+  }
 }
 
 }  // namespace
