@@ -72,9 +72,10 @@ struct TrackerOptions {
   // holds one object tracked in pieces: the senior track keeps it, the others are absorbed. 0 disables.
   double single_object_size_factor = 1.5;
   // The largest object the tracker assembles from fragments or pieces: this wide (a truck and the
-  // blur of its outline) and this many x SceneInfo's vehicle length (the segmentation's longest region).
+  // blur of its outline) and this many x SceneInfo's vehicle length (the segmentation's longest
+  // region; a 10.5 m truck's cab and trailer boxes overstate it, together 14 m).
   double max_object_width_m = 4.0;
-  double max_object_length_factor = 3.0;
+  double max_object_length_factor = 3.3;
   // Two tracks driving nose to tail are pieces of one long vehicle (truck cab and trailer) when the
   // features on both move at piece_min_speed_mps or faster with velocities within
   // piece_max_speed_difference_mps, one is behind the other along the direction of travel (centres
