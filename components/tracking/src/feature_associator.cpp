@@ -133,21 +133,23 @@ std::optional<cv::Point2d> reconstruct_centre(const TrackRecord& track, const Or
   return cv::Point2d(median_of(cxs), median_of(cys));
 }
 
-std::optional<cv::Vec2d> linked_velocity(const TrackRecord& track, const FeatureIndex& features, int min_features) {
-  std::vector<cv::Vec2d> velocities;
+std::vector<const TrackedFeature*> linked_features(const TrackRecord& track, const FeatureIndex& features) {
+  std::vector<const TrackedFeature*> linked;
   for (const auto& link : track.features) {
-    if (const TrackedFeature* f = features.find_linked(link)) velocities.push_back(f->velocity);
+    if (const TrackedFeature* f = features.find_linked(link)) linked.push_back(f);
   }
-  if (static_cast<int>(velocities.size()) < min_features || velocities.empty()) return std::nullopt;
+  return linked;
+}
+
+std::optional<cv::Vec2d> median_velocity_of(const std::vector<const TrackedFeature*>& linked, int min_features) {
+  if (static_cast<int>(linked.size()) < min_features || linked.empty()) return std::nullopt;
+  std::vector<cv::Vec2d> velocities;
+  for (const TrackedFeature* f : linked) velocities.push_back(f->velocity);
   return median_velocity(velocities);
 }
 
-std::vector<cv::Point2d> linked_positions(const TrackRecord& track, const FeatureIndex& features) {
-  std::vector<cv::Point2d> positions;
-  for (const auto& link : track.features) {
-    if (const TrackedFeature* f = features.find_linked(link)) positions.push_back(f->position);
-  }
-  return positions;
+std::optional<cv::Vec2d> linked_velocity(const TrackRecord& track, const FeatureIndex& features, int min_features) {
+  return median_velocity_of(linked_features(track, features), min_features);
 }
 
 void link_new_features(std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,

@@ -109,9 +109,9 @@ bool by_id(const TrackRecord& a, const TrackRecord& b) { return a.id < b.id; }
 
 // The linked features' own motion: their median velocity updates the track's velocity and, for a
 // vehicle under way, its direction names the box's axis. Returns that heading (deg), if any.
-std::optional<double> update_with_feature_motion(KalmanState& kalman, const TrackRecord& track,
-                                                 const FeatureIndex& features, const TrackerOptions& options) {
-  const auto velocity = linked_velocity(track, features, options.min_reconstruction_features);
+std::optional<double> update_with_feature_motion(KalmanState& kalman, const std::vector<const TrackedFeature*>& linked,
+                                                 const TrackerOptions& options) {
+  const auto velocity = median_velocity_of(linked, options.min_reconstruction_features);
   if (!velocity) return std::nullopt;
   if (options.feature_velocity_sigma_px > 0.0) {
     kalman = update_with_velocity(kalman, *velocity, options.feature_velocity_sigma_px);
@@ -192,14 +192,15 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   std::vector<bool> may_link(n, false);
   for (size_t i = 0; i < n; ++i) {
     const TrackMeasurement& m = resolved.measurements[i];
-    const std::optional<double> heading = update_with_feature_motion(kalman[i], state_.tracks[i], features, options_);
+    const std::vector<const TrackedFeature*> linked = linked_features(state_.tracks[i], features);
+    const std::optional<double> heading = update_with_feature_motion(kalman[i], linked, options_);
     if (m.kind == MeasurementKind::Box) {
       OrientedBox box = heading ? box_along_heading(m.box, *heading) : m.box;
+      // A heading means at least min_reconstruction_features linked features are present.
       if (heading && options_.feature_span_margin_px >= 0.0) {
-        const auto points = linked_positions(state_.tracks[i], features);
-        if (static_cast<int>(points.size()) >= options_.min_reconstruction_features) {
-          box = lengthen_to_cover(box, points, options_.feature_span_margin_px, vehicle_length_px);
-        }
+        std::vector<cv::Point2d> points;
+        for (const TrackedFeature* f : linked) points.push_back(f->position);
+        box = lengthen_to_cover(box, points, options_.feature_span_margin_px, vehicle_length_px);
       }
       if (m.size_jump) open_size_uncertainty(kalman[i], box);
       kalman[i] = update_with_box(kalman[i], box, box_noise, options_.min_box_size_px);
@@ -232,9 +233,9 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   // 6. Link new features (not during a merge, where the box is only reconstructed).
   // A vehicle's blob may be a part of it; its other features lie within a vehicle length.
   std::vector<OrientedBox> link_area = predicted;
+  const double reach = vehicle_length_px * options_.link_min_length_factor;
   for (size_t i = 0; i < n; ++i) {
     const bool under_way = known[i] && cv::norm(velocities[i]) >= options_.heading_min_speed_px;
-    const double reach = vehicle_length_px * options_.link_min_length_factor;
     if (under_way && link_area[i].length < reach) link_area[i].length = reach;
   }
   link_new_features(state_.tracks, link_area, posterior, velocities, known, may_link, features, options_);

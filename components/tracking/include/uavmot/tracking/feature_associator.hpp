@@ -57,11 +57,15 @@ void prune_feature_links(TrackRecord& track, const OrientedBox& predicted, const
 std::optional<cv::Point2d> reconstruct_centre(const TrackRecord& track, const OrientedBox& predicted,
                                               const FeatureIndex& features, int min_features);
 
+// The features behind the track's links present this frame (moving, or stopped on an established
+// link), in link order.
+std::vector<const TrackedFeature*> linked_features(const TrackRecord& track, const FeatureIndex& features);
+
+// Median velocity of `linked`; nullopt with fewer than min_features.
+std::optional<cv::Vec2d> median_velocity_of(const std::vector<const TrackedFeature*>& linked, int min_features);
+
 // Median velocity of the track's linked features present this frame; nullopt with fewer than min_features.
 std::optional<cv::Vec2d> linked_velocity(const TrackRecord& track, const FeatureIndex& features, int min_features);
-
-// Positions of the track's linked features present this frame (moving or established stopped links).
-std::vector<cv::Point2d> linked_positions(const TrackRecord& track, const FeatureIndex& features);
 
 // Links new features to tracks by the four criteria. `predicted` are the tracks' predictions
 // (criteria 2, 3), `posterior` their boxes after the update (stored box positions); only tracks with
