@@ -96,10 +96,16 @@ Participant::Participant(DdsOptions options) : options_(std::move(options)) {
     id_lock.emplace(options_.domain_id);
     int id = fresh_participant_id(options_.domain_id);
     if (id < 0) {
-      const int freed = reclaim_abandoned_ports(options_.domain_id, ports_in_use());
-      spdlog::info("domain {}: every participant id had left shared-memory ports; freed {} that no process holds",
-                   options_.domain_id, freed);
-      id = fresh_participant_id(options_.domain_id);
+      if (const auto in_use = ports_in_use()) {
+        const int freed = reclaim_abandoned_ports(options_.domain_id, *in_use);
+        spdlog::info("domain {}: every participant id had left shared-memory ports; freed {} that no process holds",
+                     options_.domain_id, freed);
+        id = fresh_participant_id(options_.domain_id);
+      } else {
+        spdlog::warn("domain {}: every participant id has left shared-memory ports, and /proc does not show which "
+                     "are held; leaving the choice to Fast DDS (`fastdds shm clean` removes abandoned ones)",
+                     options_.domain_id);
+      }
     }
     qos.wire_protocol().participant_id = id;  // -1 (every id held by a live process): Fast DDS chooses
   }

@@ -66,12 +66,15 @@ int fresh_participant_id(int domain, const std::string& shm_dir, int limit) {
   return -1;
 }
 
-std::set<uint32_t> ports_in_use(const std::string& proc_dir) {
+std::optional<std::set<uint32_t>> ports_in_use(const std::string& proc_dir) {
   std::set<uint32_t> in_use;
+  const std::string self = std::to_string(::getpid());
+  bool saw_self = false;
   std::error_code ec;
   for (const auto& process : fs::directory_iterator(proc_dir, ec)) {
     const std::string pid = process.path().filename().string();
     if (pid.empty() || !std::isdigit(static_cast<unsigned char>(pid[0]))) continue;
+    saw_self = saw_self || pid == self;
     uint32_t port = 0;
     std::error_code fd_ec;
     for (const auto& fd : fs::directory_iterator(process.path() / "fd", fd_ec)) {
@@ -84,6 +87,7 @@ std::set<uint32_t> ports_in_use(const std::string& proc_dir) {
       if (port_in_name(line, port)) in_use.insert(port);
     }
   }
+  if (ec || !saw_self) return std::nullopt;
   return in_use;
 }
 

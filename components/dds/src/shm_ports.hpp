@@ -13,6 +13,7 @@
 // holds (open or mapped) are deleted and their ids used again: no writer can still push into them.
 
 #include <cstdint>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -28,8 +29,10 @@ std::pair<uint32_t, uint32_t> unicast_ports(int domain, int participant_id);
 int fresh_participant_id(int domain, const std::string& shm_dir = "/dev/shm", int limit = 120);
 
 // The shared-memory ports that a live process holds open (a listener's lock file) or mapped (a
-// listener's segment or mutex, or one a writer pushes into), from /proc/<pid>/fd and /maps.
-std::set<uint32_t> ports_in_use(const std::string& proc_dir = "/proc");
+// listener's segment or mutex, or one a writer pushes into), from /proc/<pid>/fd and /maps;
+// nullopt when `proc_dir` does not list this process (no /proc, or another pid namespace's),
+// since then nothing can be known to be free.
+std::optional<std::set<uint32_t>> ports_in_use(const std::string& proc_dir = "/proc");
 
 // Deletes the segment, lock file and mutex of every port of `domain` (ids below `limit`) whose
 // participant id has left files in `shm_dir` while neither of its ports is in `in_use`. Returns the
