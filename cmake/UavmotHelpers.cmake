@@ -60,7 +60,7 @@ function(uavmot_add_gtest name)
   target_compile_definitions(${name} PRIVATE
     UAVMOT_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
     UAVMOT_BINARY_DIR="${CMAKE_BINARY_DIR}"
-    UAVMOT_SHARED_DATA="${UAVMOT_SHARED_DATA}")
+    UAVMOT_DATA_DIR="${UAVMOT_DATA_DIR}")
   uavmot_set_warnings(${name})
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
   if(NOT ARG_TIMEOUT)

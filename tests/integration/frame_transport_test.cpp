@@ -16,7 +16,7 @@ namespace {
 using testing::binary;
 using testing::ChildProcess;
 
-const std::string kClif = std::string(UAVMOT_SHARED_DATA) + "/clif2007/jpg";
+const std::string kClif = std::string(UAVMOT_DATA_DIR) + "/clif2007/jpg";
 
 struct ReceivedFrame {
   int64_t index = 0;

@@ -60,7 +60,7 @@ TEST(RogueWriter, MalformedSamplesAreCountedAndDroppedWhileTheChainGoesOn) {
   ASSERT_TRUE(tracks->wait_for_matched(1, std::chrono::seconds(30)));   // sink
 
   // Garbage, on every topic.
-  cv::Mat image = cv::imread(std::string(UAVMOT_SHARED_DATA) + "/clif2007/jpg/000000-100006.jpg", cv::IMREAD_GRAYSCALE);
+  cv::Mat image = cv::imread(std::string(UAVMOT_DATA_DIR) + "/clif2007/jpg/000000-100006.jpg", cv::IMREAD_GRAYSCALE);
   ASSERT_FALSE(image.empty());
   cv::resize(image, image, {320, 480});
   auto frame_sample = dds::to_msg(Frame{"uav1", 1, 0, image});

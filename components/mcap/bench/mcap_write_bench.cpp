@@ -77,7 +77,7 @@ std::vector<std::vector<uint8_t>> load_mosaics(const std::string& dir, int count
 
 int main(int argc, char** argv) {
   int frames = 240;
-  std::string data = std::string(UAVMOT_SHARED_DATA) + "/clif2007/jpg";
+  std::string data = std::string(UAVMOT_DATA_DIR) + "/clif2007/jpg";
   std::string out = "/tmp/uavmot_mcap_bench";
   uint64_t chunk_size = 4ull << 20;
   int zstd_level = 0;

@@ -102,7 +102,7 @@ Result measure(const std::string& name, const Frames& frames, const std::functio
 
 int main(int argc, char** argv) {
   CLI::App app{"Motion layer benchmark: uavmot vs OpenCV videostab vs plain KLT + findHomography"};
-  std::string clif = std::string(UAVMOT_SHARED_DATA_DIR) + "/clif2007/jpg";
+  std::string clif = std::string(UAVMOT_DATA_DIR) + "/clif2007/jpg";
   int frames = 60, width = 1920, height = 1080, threads = 1, features = 1000;
   double speed = 3.0, rotation = 0.05, noise = 1.0, zoom = 0.0005;
   bool describe = false, only_uavmot = false;

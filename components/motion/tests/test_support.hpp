@@ -9,7 +9,7 @@
 
 namespace uavmot::motion::test {
 
-inline std::string clif_folder() { return std::string(UAVMOT_SHARED_DATA) + "/clif2007/jpg"; }
+inline std::string clif_folder() { return std::string(UAVMOT_DATA_DIR) + "/clif2007/jpg"; }
 
 inline testing::WarpedSequenceOptions camera(double speed_px, double rotation_deg, cv::Size size = {960, 540}) {
   testing::WarpedSequenceOptions o;

@@ -10,7 +10,7 @@
 #include "uavmot/core/error.hpp"
 
 #ifndef UAVMOT_SIM_DEFAULT_TEXTURE_DIR
-#define UAVMOT_SIM_DEFAULT_TEXTURE_DIR "../shared/data/clif2007/jpg"
+#define UAVMOT_SIM_DEFAULT_TEXTURE_DIR "data/clif2007/jpg"
 #endif
 
 namespace uavmot::sim {
@@ -281,8 +281,8 @@ std::string scenario_to_yaml(const Scenario& scenario) {
 }
 
 std::string default_texture_dir() {
-  if (const char* shared = std::getenv("UAVMOT_SHARED_DATA"); shared && *shared)
-    return std::string(shared) + "/clif2007/jpg";
+  if (const char* data = std::getenv("UAVMOT_DATA_DIR"); data && *data)
+    return std::string(data) + "/clif2007/jpg";
   return UAVMOT_SIM_DEFAULT_TEXTURE_DIR;
 }
 

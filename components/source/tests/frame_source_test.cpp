@@ -15,8 +15,8 @@ namespace uavmot::source {
 namespace {
 namespace fs = std::filesystem;
 
-const fs::path kClif = fs::path(UAVMOT_SHARED_DATA) / "clif2007" / "jpg";
-const fs::path kAphillMp4 = fs::path(UAVMOT_SHARED_DATA) / "aphill" / "aphill_240_1fps_crf32.mp4";
+const fs::path kClif = fs::path(UAVMOT_DATA_DIR) / "clif2007" / "jpg";
+const fs::path kAphillMp4 = fs::path(UAVMOT_DATA_DIR) / "aphill" / "aphill_240_1fps_crf32.mp4";
 
 fs::path fresh_dir(const std::string& name) {
   const fs::path dir = fs::temp_directory_path() / ("uavmot_source_test_" + name);

@@ -30,7 +30,7 @@ struct CameraParams {
 
 // The ground: real aerial texture with roads drawn on it.
 struct GroundParams {
-  std::string texture_dir;        // folder of images; "" = the shared CLIF 2007 frames; "procedural" = synthetic
+  std::string texture_dir;        // folder of images; "" = the CLIF 2007 frames in data/; "procedural" = synthetic
   double texture_gsd_m = 1.0;     // metres per texture pixel
   double texture_contrast = 1.0;  // scales the texture's deviation from its mean
   double detail_noise = 5.0;      // gray-level spread of fine ground grain added at rendering resolution
@@ -137,7 +137,7 @@ void validate_scenario(const Scenario& scenario);
 // The whole scenario as YAML text that load_scenario reads back to the same values.
 std::string scenario_to_yaml(const Scenario& scenario);
 
-// Where the shared CLIF 2007 frames are (compile-time default, overridable by UAVMOT_SHARED_DATA).
+// Where the CLIF 2007 frames of data/ are (compile-time default, overridable by UAVMOT_DATA_DIR).
 std::string default_texture_dir();
 
 }  // namespace uavmot::sim
