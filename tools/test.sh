@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The README's test command (and CI's, via .ci/run): installs dependencies, builds, runs the whole
-# test suite, the whole suite again under ASan + UBSan, the DDS tests under TSan, then every fuzz
-# target for a bounded time (docs/developing.md has each stage and its time).
+# test suite, the README's demo from a bare clone in an empty folder (fresh-clone), the whole suite
+# again under ASan + UBSan, the DDS tests under TSan, then every fuzz target for a bounded time
+# (docs/developing.md has each stage and its time).
 # Locally, UAVMOT_SKIP_STAGES="asan tsan fuzz" (any stage names) skips stages;
 # UAVMOT_SANITIZER_STAGES=0 skips both sanitizer stages.
 set -euo pipefail
@@ -36,6 +37,7 @@ tests() {
 stage deps bash tools/install_deps.sh
 stage build bash tools/build.sh
 stage tests tests
+stage fresh-clone bash tools/fresh_clone_demo.sh
 stage asan bash tools/sanitize.sh address
 stage tsan bash tools/sanitize.sh thread
 stage fuzz bash tools/fuzz.sh "$fuzz_seconds"

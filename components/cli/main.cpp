@@ -67,11 +67,12 @@ void print_help(const std::map<std::string, fs::path>& subcommands) {
 
 int main(int argc, char** argv) {
   const auto subcommands = find_subcommands();
+  // `uavmot help SUB` is `uavmot SUB --help`; the rewritten arguments live as long as main().
+  std::vector<char*> help_args;
   if (argc < 2 || !std::strcmp(argv[1], "--help") || !std::strcmp(argv[1], "-h") || !std::strcmp(argv[1], "help")) {
     if (argc >= 3 && !std::strcmp(argv[1], "help")) {
-      // `uavmot help SUB` is `uavmot SUB --help`
-      std::vector<char*> args = {argv[0], argv[2], const_cast<char*>("--help")};
-      argv = args.data();
+      help_args = {argv[0], argv[2], const_cast<char*>("--help")};
+      argv = help_args.data();
       argc = 3;
     } else {
       print_help(subcommands);

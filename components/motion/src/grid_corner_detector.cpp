@@ -112,13 +112,21 @@ std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const std::vector<
 
   const cv::Rect usable(o.border_px, o.border_px, gray.cols - 2 * o.border_px, gray.rows - 2 * o.border_px);
   if (usable.width <= 0 || usable.height <= 0) return added;
-  std::vector<int> to_search;
+  // Emptiest neighbourhoods first: when the feature budget is smaller than the cells to fill, it
+  // goes where the image is least covered (the edge where new ground enters), not to the cells
+  // that come first in row-major order (which starved the bottom and right of large frames).
+  std::vector<std::pair<int, int>> to_search;  // (features in the 3x3 cell neighbourhood, cell)
   for (int index = 0; index < cols * rows; ++index) {
     if (buckets.count(index) >= o.features_per_cell) continue;
     if (retry_at && (*retry_at)[static_cast<size_t>(index)] > call) continue;
-    to_search.push_back(index);
+    const int cx = index % cols, cy = index / cols;
+    int around = 0;
+    for (int y = std::max(0, cy - 1); y <= std::min(rows - 1, cy + 1); ++y)
+      for (int x = std::max(0, cx - 1); x <= std::min(cols - 1, cx + 1); ++x) around += buckets.count(y * cols + x);
+    to_search.emplace_back(around, index);
   }
-  for (const int index : to_search) {
+  if (static_cast<int>(to_search.size()) > budget) std::stable_sort(to_search.begin(), to_search.end());
+  for (const auto& [around, index] : to_search) {
     if (budget <= 0) break;
     const int cx = index % cols, cy = index / cols;
     const cv::Rect area = cv::Rect(cx * cell, cy * cell, cell, cell) & usable;

@@ -1,6 +1,7 @@
 #include "uavmot/motion/motion_estimator.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -12,6 +13,7 @@
 #include "homography_estimation.hpp"
 #include "homography_refinement.hpp"
 #include "klt_tracker.hpp"
+#include "parallax_filter.hpp"
 #include "relative_velocity.hpp"
 
 namespace uavmot::motion {
@@ -42,7 +44,7 @@ TrackedFeature to_output(const LiveFeature& f) {
 class MotionEstimator::Impl {
  public:
   Impl(MotionOptions options, SceneInfo scene)
-      : options_(std::move(options)), scene_(scene), detector_(options_) {
+      : options_(std::move(options)), scene_(scene), detector_(options_), parallax_(options_) {
     validate(options_);
     if (options_.min_moving_speed_mps > 0.0) {
       if (!(scene_.gsd_m > 0.0) || !(scene_.fps > 0.0)) {
@@ -61,6 +63,7 @@ class MotionEstimator::Impl {
     last_motion_ = Homography::eye();
     last_valid_ = false;
     detector_.reset();
+    parallax_.reset();
   }
   const MotionOptions& options() const { return options_; }
 
@@ -73,6 +76,7 @@ class MotionEstimator::Impl {
   MotionOptions options_;
   SceneInfo scene_;
   GridCornerDetector detector_;
+  ParallaxFilter parallax_;
   Pyramid previous_;
   Pyramid spare_;  // buffers for the next frame's pyramid
   std::vector<LiveFeature> features_;  // ordered by id
@@ -220,9 +224,29 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
     velocities.push_back(f.velocity.velocity);
   }
   flow.fit(positions, velocities);
+  std::vector<ParallaxSample> samples;
+  samples.reserve(survivors.size());
   for (auto& f : survivors) {
     if (f.velocity.available) f.velocity.velocity -= flow.field(f.position);
-    f.classifier.update(f.velocity, static_cast<int>(f.age), o);
+    if (f.velocity.available && f.history.size() >= o.min_track_frames) samples.push_back({f.position, f.velocity.velocity, f.velocity.sigma});
+  }
+  // Static 3-D structure moves along its epipolar line: that part is no independent motion. The
+  // reported velocity stays relative to the ground plane; only the decision sees what is left.
+  parallax_.fit(samples, current.size, out.frame_index);
+  std::vector<VelocityEstimate> decided(survivors.size());
+  std::vector<double> speeds;
+  speeds.reserve(survivors.size());
+  for (size_t k = 0; k < survivors.size(); ++k) {
+    const LiveFeature& f = survivors[k];
+    decided[k] = f.velocity;
+    if (!f.velocity.available) continue;
+    decided[k].velocity = parallax_.independent_velocity({f.position, f.velocity.velocity, f.velocity.sigma});
+    if (f.history.size() >= o.min_track_frames) speeds.push_back(std::hypot(decided[k].velocity[0], decided[k].velocity[1]));
+  }
+  const double floor_px = scene_noise_floor(std::move(speeds), o);
+  for (size_t k = 0; k < survivors.size(); ++k) {
+    LiveFeature& f = survivors[k];
+    f.classifier.update(decided[k], static_cast<int>(f.age), o, floor_px);
   }
   features_ = std::move(survivors);
   return true;

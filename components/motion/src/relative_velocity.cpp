@@ -53,14 +53,21 @@ VelocityEstimate estimate_velocity(const FeatureHistory& history, const MotionOp
   return out;
 }
 
-bool MotionClassifier::update(const VelocityEstimate& e, int track_frames, const MotionOptions& o) {
+double scene_noise_floor(std::vector<double> speeds, const MotionOptions& o) {
+  if (!(o.scene_noise_factor > 0.0) || speeds.size() < 20) return 0.0;
+  const auto middle = speeds.begin() + static_cast<long>(speeds.size() / 2);
+  std::nth_element(speeds.begin(), middle, speeds.end());
+  return o.scene_noise_factor * *middle / 1.1774;
+}
+
+bool MotionClassifier::update(const VelocityEstimate& e, int track_frames, const MotionOptions& o, double floor_px) {
   if (!e.available || track_frames < o.min_track_frames) {
     moving_ = false;
     streak_ = 0;
     return moving_;
   }
   const double speed = std::hypot(e.velocity[0], e.velocity[1]);
-  const double threshold = std::max(o.moving_sigma_factor * e.sigma, o.min_moving_speed_px);
+  const double threshold = std::max({o.moving_sigma_factor * e.sigma, o.min_moving_speed_px, floor_px});
   const bool argues_for_change = moving_ ? speed < o.release_ratio * threshold : speed > threshold;
   streak_ = argues_for_change ? streak_ + 1 : 0;
   if (streak_ >= o.confirm_frames) {

@@ -8,6 +8,7 @@
 // tracking noise, gives the 1-sigma noise of that velocity.
 
 #include <deque>
+#include <vector>
 
 #include <opencv2/core/matx.hpp>
 #include <opencv2/core/types.hpp>
@@ -44,13 +45,21 @@ VelocityEstimate estimate_velocity(const FeatureHistory& history, const MotionOp
 bool is_tracking_slip(const Homography& h, const cv::Point2f& from, const cv::Point2f& to, const VelocityEstimate& known,
                       double max_step_error_px);
 
+// The frame's own noise: scene_noise_factor times the robust 1-sigma of the velocity components of
+// all classified features (median speed / 1.1774, the median of a 2-D Gaussian's norm). Each
+// feature's sigma comes from its own line fit, which misses slow drifts that real imagery has
+// (JPEG, appearance change, shimmering trees); the whole frame's spread does not. Moving objects
+// are few, so the median ignores them. 0 when off or with fewer than 20 speeds.
+double scene_noise_floor(std::vector<double> speeds, const MotionOptions& options);
+
 // Moving/stationary decision with hysteresis: a feature becomes moving after confirm_frames
 // consecutive frames with a significant speed (> max(moving_sigma_factor * sigma,
-// min_moving_speed_px)) and stops after confirm_frames consecutive frames below release_ratio
+// min_moving_speed_px, the scene noise floor)) and stops after confirm_frames consecutive frames below release_ratio
 // times that threshold. Features seen in fewer than min_track_frames frames are stationary.
 class MotionClassifier {
  public:
-  bool update(const VelocityEstimate& estimate, int track_frames, const MotionOptions& options);
+  // `floor_px`: a lower bound on the threshold from the whole frame's noise (scene_noise_floor()).
+  bool update(const VelocityEstimate& estimate, int track_frames, const MotionOptions& options, double floor_px = 0.0);
   bool moving() const { return moving_; }
 
  private:

@@ -79,7 +79,7 @@ int process_main(int argc, char** argv) {
       view::OverlayOptions overlay;
       overlay.gsd_m = options.scene.gsd_m;
       overlay.fps = options.scene.fps;
-      if (!video_file.empty()) video = std::make_unique<view::VideoSink>(view::VideoSinkOptions{video_file, options.scene.fps, "mp4v"});
+      if (!video_file.empty()) video = std::make_unique<view::VideoSink>(view::VideoSinkOptions{video_file, options.scene.fps});
       pipeline::Progress progress("process", info.frame_count, !quiet);
       const auto start = std::chrono::steady_clock::now();
       int exit_code = kExitOk;

@@ -34,7 +34,7 @@ const char* const kWindowName = "uavmot view";
 int view_main(int argc, char** argv) {
   dds::NodeOptions node;
   node.mode = "live";  // a viewer must not slow the chain down
-  std::string out_file, stream_filter, fourcc = "mp4v";
+  std::string out_file, stream_filter, fourcc = "avc1";
   view::OverlayOptions overlay;
   bool window = false;
   int max_lag = 10;
@@ -43,7 +43,7 @@ int view_main(int argc, char** argv) {
   double linger_s = 2.0, idle_timeout_s = 0.0;
   return run_app(argc, argv, "view", "draw frames, features, regions and tracks (window or mp4)", [&](CLI::App& app) {
     app.add_option("--out", out_file, "write the annotated video to this mp4 file");
-    app.add_option("--fourcc", fourcc, "mp4v (MPEG-4 Part 2, fast) or avc1 (H.264: 4x smaller, ~7x slower to encode)")
+    app.add_option("--fourcc", fourcc, "avc1 (H.264, plays in browsers; default) or mp4v (MPEG-4 Part 2)")
         ->check(CLI::IsMember({"mp4v", "avc1"}))
         ->capture_default_str();
     app.add_flag("--window", window, "show a window (needs $DISPLAY)");

@@ -1,6 +1,7 @@
 #include "uavmot/view/video_sink.hpp"
 
 #include <cmath>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 
@@ -37,6 +38,11 @@ void VideoSink::write(const cv::Mat& frame) {
     size_ = frame.size();
     writer_ = std::make_unique<cv::VideoWriter>();
     const auto& c = options_.fourcc;
+    // OpenCV passes this variable to the encoder as "key;value|key;value" (its FFmpeg backend reads it
+    // at open); a user's own setting wins.
+    if (c == "avc1" && !options_.h264_preset.empty()) {
+      setenv("OPENCV_FFMPEG_WRITER_OPTIONS", ("preset;" + options_.h264_preset).c_str(), 0);
+    }
     writer_->open(options_.path, cv::CAP_FFMPEG, cv::VideoWriter::fourcc(c[0], c[1], c[2], c[3]), options_.fps, size_, true);
     if (!writer_->isOpened()) {
       writer_.reset();

@@ -56,8 +56,23 @@ struct MotionOptions {
   double moving_sigma_factor = 4.0;    // moving when speed > factor * velocity_sigma ...
   double min_moving_speed_px = 0.15;   // ... and > this (px/frame)
   double min_moving_speed_mps = 0.0;   // ... and > this ground speed (m/s, via SceneInfo); 0 = unused
+  double scene_noise_factor = 6.0;     // ... and > this times the frame's robust velocity noise (0 = unused)
   int confirm_frames = 2;           // consecutive significant frames to become moving (and to stop)
   double release_ratio = 0.7;       // a moving feature stops below this fraction of the threshold
+
+  // --- Parallax of static 3-D structure (plane + parallax, docs/motion.md) -------------------
+  bool parallax_rejection = true;   // explain motion along the epipolar lines as parallax
+  bool parallax_both_sides = true;  // structure on both sides of the homography's plane (real flights: it
+                                    // fits a plane between ground and roofs); false: one side only
+  int parallax_min_support = 12;    // features on one epipole's lines before it is trusted
+  double parallax_min_support_fraction = 0.5;  // ... and this share of the features with a clear residual
+  double parallax_min_spread = 0.1;    // ... spread over this fraction of the smaller image side (1-sigma)
+  int parallax_stable_frames = 3;      // ... found again, within parallax_stable_angle_deg, this many frames running
+  double parallax_stable_angle_deg = 8.0;
+  double parallax_across_sigma = 3.0;  // on a line: across-line velocity <= this * sigma + the floor
+  double parallax_across_floor_px = 0.05;
+  double parallax_cap_factor = 3.0;    // parallax explained up to this times the supporters' median (tallest / typical structure)
+  int parallax_ransac_iterations = 300;
 };
 
 // Reads a `motion:` section; absent keys keep their defaults. Throws uavmot::InputError naming

@@ -1,6 +1,7 @@
 #pragma once
-// Writes annotated frames to an mp4 file (MPEG-4 Part 2, fourcc mp4v, through OpenCV's FFmpeg
-// backend) that cv::VideoCapture and ffprobe read back. The size is taken from the first frame.
+// Writes annotated frames to an mp4 file through OpenCV's FFmpeg backend: H.264 (fourcc avc1,
+// libx264, yuv420p) by default, which browsers play; mp4v (MPEG-4 Part 2) on request. The size is
+// taken from the first frame.
 
 #include <cstdint>
 #include <memory>
@@ -17,7 +18,10 @@ namespace uavmot::view {
 struct VideoSinkOptions {
   std::string path;            // e.g. out.mp4; its folder is created if missing
   double fps = 25.0;
-  std::string fourcc = "mp4v";
+  std::string fourcc = "avc1";  // "avc1" (H.264) or "mp4v"
+  // libx264 preset for avc1 (OPENCV_FFMPEG_WRITER_OPTIONS, when the user has not set it): veryfast
+  // keeps up with the chain; slower presets only shrink the file.
+  std::string h264_preset = "veryfast";
 };
 
 class VideoSink {

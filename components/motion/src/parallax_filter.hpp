@@ -1,0 +1,76 @@
+#pragma once
+// Plane + parallax: tells static 3-D structure (roofs, walls, trees, parked trucks) from objects
+// that move on their own, after the ground-plane homography has been compensated.
+//
+// A static point above the ground leaves a residual motion against the ground-plane homography
+// when the camera translates. By the plane + parallax decomposition (Irani & Anandan 1996;
+// Sawhney et al. 2000) that residual lies on the line through the point and the epipole e (the
+// image of the camera's translation), on the same side for every point above the plane, and its
+// size grows with the point's height. An independently moving object's residual is its own
+// motion: in general off that line, or on the wrong side, or larger than any structure gives.
+//
+// Each frame, ParallaxFilter fits e by RANSAC over the features' relative velocities (two lines
+// fix a hypothesis; the support counts features on their line, on the common side). The fit is
+// trusted only when the support is many features spread over the image (structure is; one road
+// of vehicles is a strip) and the epipole has been stable for a few frames (the camera's
+// direction of travel changes slowly; a chance alignment of vehicles does not persist). Then a
+// feature's velocity ALONG its epipolar line, on the structure side and up to a multiple of the
+// structure's median parallax (the cap), is explained as parallax and removed before the
+// moving/static decision; what is left across the line is independent motion, and a velocity on
+// the wrong side or beyond the cap is independent motion as a whole.
+
+#include <cstdint>
+#include <vector>
+
+#include <opencv2/core/matx.hpp>
+#include <opencv2/core/types.hpp>
+
+#include "uavmot/motion/motion_options.hpp"
+
+namespace uavmot::motion {
+
+struct ParallaxSample {
+  cv::Point2f position;        // current frame
+  cv::Vec2d velocity{0, 0};    // relative to the compensated ground, px/frame
+  double sigma = 0.0;          // 1-sigma of each velocity component
+};
+
+struct ParallaxModel {
+  bool valid = false;          // trusted: used to explain velocities
+  cv::Vec3d epipole{0, 0, 0};  // homogeneous, image coordinates of the current frame
+  int side = 1;                // structure's residual points along side * epipolar_direction(); 0 = either way
+  int candidates = 0;          // features with a residual clearly above their noise
+  int support = 0;             // of those, consistent with the epipole
+  double spread_px = 0.0;      // sqrt of the smaller eigenvalue of the supporters' position covariance
+  double cap_px = 0.0;         // largest velocity along the line explained as parallax (px/frame)
+  int stable_frames = 0;       // consecutive frames with a consistent epipole
+};
+
+class ParallaxFilter {
+ public:
+  explicit ParallaxFilter(const MotionOptions& options) : options_(options) {}
+
+  // Fits this frame's epipole to the samples (deterministic: the hypotheses are drawn from a
+  // generator seeded by `frame_index`). Returns the model, valid only when trusted.
+  const ParallaxModel& fit(const std::vector<ParallaxSample>& samples, cv::Size image_size, int64_t frame_index);
+
+  // The part of `sample.velocity` that parallax does not explain under `model` (the velocity
+  // itself when the model is not valid).
+  cv::Vec2d independent_velocity(const ParallaxSample& sample) const;
+
+  const ParallaxModel& model() const { return model_; }
+  void reset() { model_ = ParallaxModel{}; }
+
+ private:
+  // `velocity` with its component `along` (>= 0) the unit direction u removed, when within the cap.
+  cv::Vec2d independent_along(const cv::Vec2d& velocity, const cv::Vec2d& u, double along) const;
+
+  const MotionOptions& options_;
+  ParallaxModel model_;
+};
+
+// Unit direction at `point` along the epipolar line, pointing away from the epipole (for an
+// epipole at infinity: the direction towards it, reversed). Zero at the epipole itself.
+cv::Vec2d epipolar_direction(const cv::Vec3d& epipole, const cv::Point2f& point);
+
+}  // namespace uavmot::motion
