@@ -89,7 +89,9 @@ FlightMetadata flight_metadata_from_stream(const MpegTsKlv& stream, cv::Size ima
     std::int64_t last = out.packets.back().pts;
     for (const auto& p : out.packets) last = std::max(last, p.pts);
     for (const std::int64_t p : stream.video_pes_pts) last = std::max(last, p);
-    frame_count = last < origin ? 0 : static_cast<int>(std::floor(static_cast<double>(last - origin) / ticks_per_frame + 1e-6)) + 1;
+    const double frames = last < origin ? 0.0 : std::floor(static_cast<double>(last - origin) / ticks_per_frame + 1e-6) + 1.0;
+    // Damaged PTS can span hours: cap what a stream alone can make us allocate.
+    frame_count = static_cast<int>(std::min(frames, static_cast<double>(kMaxAutomaticFrames)));
   }
 
   // Packets by time (stable: same-PTS packets keep stream order, the later one wins).

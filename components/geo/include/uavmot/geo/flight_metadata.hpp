@@ -20,6 +20,10 @@
 
 namespace uavmot::geo {
 
+// The most frames frame_count = 0 derives from a stream's PTS (about 1.9 h at 29.97 fps), so a
+// damaged PTS cannot make the reader allocate for days of video; pass frame_count for longer ones.
+inline constexpr int kMaxAutomaticFrames = 200000;
+
 struct TimedMetadata {
   std::int64_t pts = 0;  // 90 kHz, unwrapped
   UasMetadata metadata;
@@ -51,8 +55,8 @@ struct FlightMetadata {
 
 // For an MPEG transport stream (extension .ts/.m2t/.mpg/.mpeg that starts with TS sync bytes, or
 // any file that does): the per-frame geometry for frames 1..frame_count (frame_count = 0: up to
-// the last video or metadata PTS). Any other input gives an empty result, not an error.
-// Throws InputError when the file cannot be read or a .ts holds no transport stream, and
+// the last video or metadata PTS, at most kMaxAutomaticFrames). Any other input gives an empty
+// result, not an error. Throws InputError when the file cannot be read or a .ts holds no transport stream, and
 // InvalidArgument when fps or the image size is not positive.
 FlightMetadata read_flight_metadata(const std::filesystem::path& path, cv::Size image_size, double fps, int frame_count = 0);
 
