@@ -176,7 +176,8 @@ bool Simulator::Impl::next(SimFrame& frame) {
     drawn.push_back(v);
     ids.push_back(it->second);
   }
-  frame.object_id_mask = cv::Mat::zeros(size, CV_32S);
+  // A fresh buffer each frame: callers keep SimFrame copies (cv::Mat copies share data).
+  frame.object_id_mask = cv::Mat(size, CV_32S, cv::Scalar(0));
   detail::render_vehicles(canvas, frame.object_id_mask, drawn, ids, image_from_world, shadow_);
   // Structures stand in front of the ground and of every vehicle (vehicles are flat on the
   // ground and never inside a structure), so they are drawn last and hide what is behind.
