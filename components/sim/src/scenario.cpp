@@ -241,17 +241,16 @@ Scenario preset_scenario(const std::string& name) {
     s.structures.building_density_per_ha = 1.6;
     s.structures.tree_density_per_ha = 2.5;
     s.structures.wall_density_per_ha = 0.5;
+    s.camera.speed_mps = 36.0;
     if (name == "urban3d") {
       // Nadir at 300 m like `paper`, but a fixed-wing platform at 36 m/s (4.1 px/frame): the
       // parallax of a roof against the ground is v dt h / (gsd (H - h)) = 0.29 px/frame at 20 m
       // and 0.46 px/frame at 30 m.
-      s.camera.speed_mps = 36.0;
       return s;
     }
     // Oblique: pitched 30 deg forward, the GSD grows from the near to the far edge of the image.
     s.camera.pitch_deg = 30.0;
-    s.camera.speed_mps = 20.0;
-    s.camera.heading_deg = 120.0;  // flying sideways to the view direction (image y)
+    s.camera.heading_deg = 120.0;  // across the view direction
     return s;
   }
   throw InvalidArgument("unknown scenario preset '" + name + "'; known presets: " + join_names());
