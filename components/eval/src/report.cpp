@@ -25,6 +25,9 @@ std::string format_table(const EvaluationResult& r) {
   const FalseAlarms& f = r.false_alarms;
   out += fmt::format("\nFalse alarms: {} of {} boxes ({:.2f} per frame), {} on parked vehicles; {} boxes on stopped vehicles not scored\n",
                      f.false_alarms, f.boxes, f.per_frame(), f.on_parked, f.on_stopped);
+  if (f.structures_known)
+    out += fmt::format("  on static structures: {} ({:.3f} per frame): {} on buildings, {} on trees, {} on walls\n", f.on_structure,
+                       f.on_structure_per_frame(), f.on_building, f.on_tree, f.on_wall);
   if (r.has_identities) {
     out += "\nTracking (TrackEval definitions)\n";
     out += "  IoU    MOTA    MOTP    IDF1    HOTA    DetA    AssA      FP      FN  IDSW  Frag   MT   PT   ML\n";
@@ -70,6 +73,11 @@ nlohmann::ordered_json to_json(const EvaluationResult& r) {
   const FalseAlarms& f = r.false_alarms;
   j["false_alarms"] = {{"boxes", f.boxes}, {"false_alarms", f.false_alarms}, {"on_parked", f.on_parked},
                        {"on_stopped_not_scored", f.on_stopped}, {"per_frame", f.per_frame()}};
+  if (f.structures_known) {
+    j["false_alarms"]["on_structure"] = f.on_structure;
+    j["false_alarms"]["on_structure_per_frame"] = f.on_structure_per_frame();
+    j["false_alarms"]["on_structure_by_kind"] = {{"building", f.on_building}, {"tree", f.on_tree}, {"wall", f.on_wall}};
+  }
   j["tracking"] = nlohmann::ordered_json::array();
   for (const ClearMot& m : r.tracking) {
     j["tracking"].push_back({{"iou_threshold", m.threshold}, {"MOTA", m.mota}, {"MOTP", m.motp}, {"TP", m.tp}, {"FP", m.fp},

@@ -4,6 +4,7 @@
 #include <set>
 
 #include "metrics.hpp"
+#include "polygon_overlap.hpp"
 
 namespace uavmot::eval::detail {
 namespace {
@@ -25,6 +26,29 @@ bool associated(const OrientedBox& object, const OrientedBox& box, const EvalOpt
   const double inter = intersection_area(object, box);
   if (inter <= 0.0) return false;
   return inter >= options.min_object_coverage * box_area(object) || inter >= options.min_box_on_object * box_area(box);
+}
+
+const std::vector<StructureOutline>& structures_in(const Sequence& sequence, int64_t frame) {
+  static const std::vector<StructureOutline> none;
+  auto it = sequence.structures.find(frame);
+  return it == sequence.structures.end() ? none : it->second;
+}
+
+// The structure a box belongs to by the vehicle rule (covers enough of it, or lies mostly on
+// it), the one it overlaps most; nullptr when none.
+const StructureOutline* structure_under(const std::vector<StructureOutline>& structures, const OrientedBox& box,
+                                        const EvalOptions& options) {
+  const StructureOutline* best = nullptr;
+  double best_overlap = 0.0;
+  for (const StructureOutline& s : structures) {
+    const double inter = intersection_area(box, s.outline);
+    if (inter <= best_overlap) continue;
+    if (inter >= options.min_box_on_object * box_area(box) || inter >= options.min_object_coverage * polygon_area(s.outline)) {
+      best = &s;
+      best_overlap = inter;
+    }
+  }
+  return best;
 }
 
 }  // namespace
@@ -55,6 +79,7 @@ void segmentation_metrics(const Sequence& sequence, const Predictions& predictio
                           FalseAlarms& false_alarms) {
   double sum_x = 0, sum_y = 0, sum_w = 0, sum_l = 0;
   bool all_oriented = true;
+  false_alarms.structures_known = sequence.has_structures;
   for (const int64_t frame : frames) {
     const auto& objects = objects_in(sequence, frame);
     const auto& boxes = boxes_in(predictions, frame);
@@ -125,6 +150,10 @@ void segmentation_metrics(const Sequence& sequence, const Predictions& predictio
       }
       ++false_alarms.false_alarms;
       if (on_parked) ++false_alarms.on_parked;
+      if (const StructureOutline* s = structure_under(structures_in(sequence, frame), pred[p], options)) {
+        ++false_alarms.on_structure;
+        ++(s->kind == "building" ? false_alarms.on_building : s->kind == "tree" ? false_alarms.on_tree : false_alarms.on_wall);
+      }
     }
   }
   precision.oriented = precision.samples > 0 && all_oriented;

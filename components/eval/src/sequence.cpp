@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <set>
+#include <sstream>
 
 #include <fmt/format.h>
 #include <opencv2/imgcodecs.hpp>
@@ -75,6 +76,37 @@ void load_mot(const std::string& file, const SequenceInfo& info, Sequence& seq, 
   }
 }
 
+// frame,id,kind,...,outline with the outline as "x y x y ..." (at least three points).
+void load_structures(const std::string& file, const SequenceInfo& info, Sequence& seq) {
+  const auto records = detail::read_records(file);
+  seq.has_structures = true;
+  if (records.empty()) return;
+  const auto col = detail::header_columns(file, records[0], {"frame", "id", "kind", "outline"});
+  for (size_t i = 1; i < records.size(); ++i) {
+    const auto& r = records[i];
+    if (r.fields.size() != records[0].fields.size()) fail(file, r.line, "expected " + std::to_string(records[0].fields.size()) + " columns");
+    const int64_t frame = parse_integer(file, r, col.at("frame"), "frame");
+    check_frame(file, r, frame, info);
+    StructureOutline s;
+    s.id = parse_integer(file, r, col.at("id"), "id");
+    s.kind = r.fields[col.at("kind")];
+    if (s.kind != "building" && s.kind != "tree" && s.kind != "wall")
+      fail(file, r.line, "kind '" + s.kind + "' is not building, tree or wall");
+    std::istringstream numbers(r.fields[col.at("outline")]);
+    std::vector<double> xy;
+    std::string token;
+    while (numbers >> token) {
+      char* end = nullptr;
+      const double v = std::strtod(token.c_str(), &end);
+      if (*end != '\0' || !std::isfinite(v)) fail(file, r.line, "outline value '" + token + "' is not a finite number");
+      xy.push_back(v);
+    }
+    if (xy.size() < 6 || xy.size() % 2 != 0) fail(file, r.line, "outline needs at least three x y points");
+    for (size_t k = 0; k < xy.size(); k += 2) s.outline.emplace_back(xy[k], xy[k + 1]);
+    seq.structures[frame].push_back(std::move(s));
+  }
+}
+
 }  // namespace
 
 SequenceInfo load_sequence_info(const std::string& file) {
@@ -135,6 +167,7 @@ Sequence load_sequence(const std::string& directory) {
     throw InputError("'" + directory + "' has no ground truth (gt/gt_obb.csv, gt/all_objects.txt or gt/gt.txt)");
   }
   if (fs::exists(gt / "homographies.txt")) seq.homographies = detail::read_homographies((gt / "homographies.txt").string(), seq.info.length);
+  if (fs::exists(gt / "structures.csv")) load_structures((gt / "structures.csv").string(), seq.info, seq);
   if (fs::is_directory(gt / "masks")) {
     const std::string masks = (gt / "masks").string();
     seq.id_mask = [masks](int64_t frame) {

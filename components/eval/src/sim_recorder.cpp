@@ -15,6 +15,8 @@ SimRecorder::SimRecorder(const sim::Simulator& simulator, bool keep_masks)
   sequence_.info.height = s.camera.height;
   sequence_.info.fps = s.fps;
   sequence_.info.gsd_m = simulator.scene().gsd_m;
+  const sim::StructureParams& st = s.structures;
+  sequence_.has_structures = st.building_density_per_ha > 0.0 || st.tree_density_per_ha > 0.0 || st.wall_density_per_ha > 0.0;
   if (keep_masks_) {
     auto masks = masks_;
     sequence_.id_mask = [masks](int64_t frame) {
@@ -40,6 +42,12 @@ void SimRecorder::add(const sim::SimFrame& frame) {
     objects.push_back(g);
   }
   sequence_.homographies[frame.index] = frame.homography_from_previous;
+  if (sequence_.has_structures) {
+    auto& structures = sequence_.structures[frame.index];
+    structures.clear();
+    for (const sim::StructureTruth& st : frame.structures)
+      structures.push_back({st.id, sim::structure_kind_name(st.kind), st.outline});
+  }
   if (keep_masks_ && !frame.object_id_mask.empty()) {
     cv::Mat mask16;
     frame.object_id_mask.convertTo(mask16, CV_16U);

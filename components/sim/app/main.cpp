@@ -29,7 +29,7 @@ int sim_main(int argc, char** argv) {
   return uavmot::run_app(argc, argv, "sim", "render a simulated UAV sequence with exact ground truth (MOTChallenge folder)",
                          [&](CLI::App& app) -> uavmot::AppBody {
     app.add_flag("--list-presets", list, "print the preset names and exit");
-    auto* preset_opt = app.add_option("--preset", preset, "built-in scenario: paper, lowsnr, fastcam, dense, slow, small, hd");
+    auto* preset_opt = app.add_option("--preset", preset, "built-in scenario: paper, lowsnr, fastcam, dense, slow, small, hd, urban3d, oblique");
     auto* file_opt = app.add_option("--scenario", scenario_file, "scenario YAML file (see docs/sim.md)");
     preset_opt->excludes(file_opt);
     app.add_option("--seed", seed, "random seed; the same seed gives byte-identical output");

@@ -17,6 +17,14 @@ cv::Mat draw_ground_truth(const SimFrame& frame, const PreviewOptions& options) 
     // Continuous image coordinates -> scaled pixel centres of the crop, 4 fractional bits.
     return cv::Point(static_cast<int>((p.x - crop.x + 0.5) * s * 16.0 - 8.0), static_cast<int>((p.y - crop.y + 0.5) * s * 16.0 - 8.0));
   };
+  // Structure silhouettes first, thin, so vehicle boxes stay readable on top.
+  for (const StructureTruth& st : frame.structures) {
+    if (!options.draw_structures) break;
+    const cv::Scalar c = st.kind == StructureKind::Tree ? cv::Scalar(120, 200, 120) : cv::Scalar(200, 90, 200);
+    std::vector<cv::Point> poly;
+    for (const auto& p : st.outline) poly.push_back(to_px(p));
+    cv::polylines(colour, poly, true, c, 1, cv::LINE_AA, 4);
+  }
   for (const ObjectTruth& o : frame.objects) {
     const cv::Scalar c = o.parked ? cv::Scalar(255, 128, 0) : (o.moving ? cv::Scalar(0, 220, 0) : cv::Scalar(0, 220, 255));
     const auto corners = box_corners(o.box);

@@ -1,5 +1,6 @@
 #include "uavmot/sim/scenario.hpp"
 
+#include <algorithm>
 #include <cstdlib>
 #include <optional>
 #include <sstream>
@@ -147,7 +148,7 @@ std::string join_names() {
 }  // namespace
 
 const std::vector<std::string>& preset_names() {
-  static const std::vector<std::string> names{"paper", "lowsnr", "fastcam", "dense", "slow", "small", "hd"};
+  static const std::vector<std::string> names{"paper", "lowsnr", "fastcam", "dense", "slow", "small", "hd", "urban3d", "oblique"};
   return names;
 }
 
@@ -233,6 +234,25 @@ Scenario preset_scenario(const std::string& name) {
     s.traffic.parked_vehicles = 30;
     return s;
   }
+  if (name == "urban3d" || name == "oblique") {
+    // A town: buildings 5-30 m, trees over the road edges, walls, parked vehicles among them.
+    s.roads.cross_roads = 2;
+    s.traffic.parked_vehicles = 20;
+    s.structures.building_density_per_ha = 1.6;
+    s.structures.tree_density_per_ha = 2.5;
+    s.structures.wall_density_per_ha = 0.5;
+    s.camera.speed_mps = 36.0;
+    if (name == "urban3d") {
+      // Nadir at 300 m like `paper`, but a fixed-wing platform at 36 m/s (4.1 px/frame): the
+      // parallax of a roof against the ground is v dt h / (gsd (H - h)) = 0.29 px/frame at 20 m
+      // and 0.46 px/frame at 30 m.
+      return s;
+    }
+    // Oblique: pitched 30 deg forward, the GSD grows from the near to the far edge of the image.
+    s.camera.pitch_deg = 30.0;
+    s.camera.heading_deg = 120.0;  // across the view direction
+    return s;
+  }
   throw InvalidArgument("unknown scenario preset '" + name + "'; known presets: " + join_names());
 }
 
@@ -269,6 +289,25 @@ void validate_scenario(const Scenario& s) {
   if (s.traffic.stop_red_s >= s.traffic.stop_period_s && s.traffic.stop_red_s > 0.0)
     throw InputError("traffic.stop_red_s must be shorter than traffic.stop_period_s");
   if (s.frames < 1) throw InputError("frames must be at least 1");
+  const StructureParams& b = s.structures;
+  const std::pair<const char*, std::pair<double, double>> ranges[] = {
+      {"building_size", {b.building_size_min_m, b.building_size_max_m}},
+      {"building_height", {b.building_height_min_m, b.building_height_max_m}},
+      {"tree_radius", {b.tree_radius_min_m, b.tree_radius_max_m}},
+      {"tree_height", {b.tree_height_min_m, b.tree_height_max_m}},
+      {"wall_length", {b.wall_length_min_m, b.wall_length_max_m}},
+      {"wall_height", {b.wall_height_min_m, b.wall_height_max_m}}};
+  for (const auto& [key, range] : ranges)
+    if (range.first > range.second)
+      throw InputError(std::string("structures.") + key + "_min_m (" + std::to_string(range.first) + ") is larger than structures." +
+                       key + "_max_m (" + std::to_string(range.second) + ")");
+  const double lowest_camera = s.camera.altitude_m * (1.0 - s.camera.altitude_change);
+  const double tallest = std::max({b.building_density_per_ha > 0.0 ? b.building_height_max_m : 0.0,
+                                   b.tree_density_per_ha > 0.0 ? b.tree_height_max_m : 0.0,
+                                   b.wall_density_per_ha > 0.0 ? b.wall_height_max_m : 0.0});
+  if (tallest > 0.5 * lowest_camera)
+    throw InputError("structures taller than half the camera's lowest altitude (" + std::to_string(lowest_camera) +
+                     " m): lower structures.*_height_max_m or raise camera.altitude_m");
   if (s.camera.width % 2 != 0 || s.camera.height % 2 != 0)
     throw InputError("camera.width and camera.height must be even (video encoding)");
 }

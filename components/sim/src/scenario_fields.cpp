@@ -23,6 +23,7 @@ void visit_scenario(Scenario& s, FieldVisitor& v) {
   v.field("altitude_period_s", c.altitude_period_s, 0.5, 10000.0);
   v.field("tilt_deg", c.tilt_deg, 0.0, 15.0);
   v.field("wobble_period_s", c.wobble_period_s, 0.5, 10000.0);
+  v.field("pitch_deg", c.pitch_deg, -45.0, 45.0);
   v.end_section();
 
   GroundParams& g = s.ground;
@@ -70,6 +71,29 @@ void visit_scenario(Scenario& s, FieldVisitor& v) {
   v.field("shadow_length_m", t.shadow_length_m, 0.0, 10.0);
   v.field("shadow_angle_deg", t.shadow_angle_deg, -360.0, 360.0);
   v.field("shadow_strength", t.shadow_strength, 0.0, 1.0);
+  v.end_section();
+
+  StructureParams& b = s.structures;
+  v.begin_section("structures");
+  v.field("building_density_per_ha", b.building_density_per_ha, 0.0, 20.0);
+  v.field("building_size_min_m", b.building_size_min_m, 3.0, 100.0);
+  v.field("building_size_max_m", b.building_size_max_m, 3.0, 100.0);
+  v.field("building_height_min_m", b.building_height_min_m, 1.0, 150.0);
+  v.field("building_height_max_m", b.building_height_max_m, 1.0, 150.0);
+  v.field("building_roadside_fraction", b.building_roadside_fraction, 0.0, 1.0);
+  v.field("tree_density_per_ha", b.tree_density_per_ha, 0.0, 50.0);
+  v.field("tree_radius_min_m", b.tree_radius_min_m, 0.5, 15.0);
+  v.field("tree_radius_max_m", b.tree_radius_max_m, 0.5, 15.0);
+  v.field("tree_height_min_m", b.tree_height_min_m, 2.0, 60.0);
+  v.field("tree_height_max_m", b.tree_height_max_m, 2.0, 60.0);
+  v.field("tree_roadside_fraction", b.tree_roadside_fraction, 0.0, 1.0);
+  v.field("wall_density_per_ha", b.wall_density_per_ha, 0.0, 20.0);
+  v.field("wall_length_min_m", b.wall_length_min_m, 2.0, 200.0);
+  v.field("wall_length_max_m", b.wall_length_max_m, 2.0, 200.0);
+  v.field("wall_height_min_m", b.wall_height_min_m, 0.5, 10.0);
+  v.field("wall_height_max_m", b.wall_height_max_m, 0.5, 10.0);
+  v.field("sun_azimuth_deg", b.sun_azimuth_deg, -360.0, 360.0);
+  v.field("sun_elevation_deg", b.sun_elevation_deg, 5.0, 90.0);
   v.end_section();
 
   SensorParams& n = s.sensor;

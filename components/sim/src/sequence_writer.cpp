@@ -1,5 +1,6 @@
 #include "uavmot/sim/sequence_writer.hpp"
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 
@@ -48,6 +49,14 @@ WriteSummary write_sequence(const Scenario& scenario, uint64_t seed, const std::
   std::ofstream all = open_file(root / "gt" / "all_objects.txt");
   std::ofstream obb = open_file(root / "gt" / "gt_obb.csv");
   std::ofstream homographies = open_file(root / "gt" / "homographies.txt");
+  // Only a world with structures gets gt/structures.csv (flat sequences stay as they were).
+  const StructureParams& sp = scenario.structures;
+  const bool with_structures = sp.building_density_per_ha > 0.0 || sp.tree_density_per_ha > 0.0 || sp.wall_density_per_ha > 0.0;
+  std::ofstream structures;
+  if (with_structures) {
+    structures = open_file(root / "gt" / "structures.csv");
+    structures << "frame,id,kind,height_m,bb_left,bb_top,bb_width,bb_height,outline\n";
+  }
   obb << "frame,id,cx,cy,width,length,angle_deg,moving,parked,visibility,vx,vy\n";
 
   cv::VideoWriter video;
@@ -86,12 +95,23 @@ WriteSummary write_sequence(const Scenario& scenario, uint64_t seed, const std::
                          o.box.cy, o.box.width, o.box.length, o.box.angle_deg, o.moving ? 1 : 0, o.parked ? 1 : 0,
                          o.visibility, o.velocity_px[0], o.velocity_px[1]);
     }
+    for (const StructureTruth& st : frame.structures) {
+      double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
+      std::string outline;
+      for (const cv::Point2d& p : st.outline) {
+        x0 = std::min(x0, p.x), y0 = std::min(y0, p.y), x1 = std::max(x1, p.x), y1 = std::max(y1, p.y);
+        outline += fmt::format("{}{:.2f} {:.2f}", outline.empty() ? "" : " ", p.x, p.y);
+      }
+      structures << fmt::format("{},{},{},{:.1f},{:.2f},{:.2f},{:.2f},{:.2f},{}\n", frame.index, st.id, structure_kind_name(st.kind),
+                                st.height_m, x0, y0, x1 - x0, y1 - y0, outline);
+    }
     if (video.isOpened()) video.write(frame.image);
     ++summary.frames;
     if (progress) progress(summary.frames, sim.frame_count());
   }
   video.release();
-  for (std::ofstream* f : {&gt, &all, &obb, &homographies}) {
+  for (std::ofstream* f : {&gt, &all, &obb, &homographies, &structures}) {
+    if (!f->is_open()) continue;
     f->flush();
     if (!*f) throw InputError("writing ground truth in '" + (root / "gt").string() + "' failed");
   }
@@ -131,6 +151,7 @@ WriteSummary write_sequence(const Scenario& scenario, uint64_t seed, const std::
                    {"gt_obb", "gt/gt_obb.csv"},
                    {"homographies", "gt/homographies.txt"},
                    {"masks", "gt/masks/%06d.png"},
+                   {"structures", with_structures ? "gt/structures.csv" : ""},
                    {"video", scenario.sensor.write_video ? "video.mp4" : ""}};
   meta["scenario_yaml"] = scenario_to_yaml(scenario);
   std::ofstream meta_out = open_file(root / "meta.json");

@@ -11,6 +11,8 @@
 #include "camera_path.hpp"
 #include "ground_raster.hpp"
 #include "road_network.hpp"
+#include "structure_layout.hpp"
+#include "structure_renderer.hpp"
 #include "traffic.hpp"
 #include "uavmot/core/error.hpp"
 #include "vehicle_renderer.hpp"
@@ -28,27 +30,46 @@ struct ViewArea {
   double min_gsd_m = 0.0;
 };
 
+// Image points whose ground positions bound the view. A nadir camera sees a near-square
+// footprint whose extremes are the corners; a pitched one also needs the edge midpoints (the
+// finest GSD is at the middle of the near edge). Nadir keeps exactly the corners so flat
+// presets render as before.
+std::vector<cv::Point2d> view_samples(const Scenario& s) {
+  std::vector<double> steps{-0.5, 0.5};
+  if (s.camera.pitch_deg != 0.0) steps = {-0.5, -0.25, 0.0, 0.25, 0.5};
+  std::vector<cv::Point2d> samples;
+  for (double fx : steps)
+    for (double fy : steps)
+      samples.emplace_back((s.camera.width - 1) / 2.0 + fx * (s.camera.width + 8), (s.camera.height - 1) / 2.0 + fy * (s.camera.height + 8));
+  return samples;
+}
+
+// Metres per pixel of the ground at image point p through g, in the finest direction for a
+// pitched camera (the raster must resolve that), by area for nadir (as before).
+double ground_gsd(const cv::Matx33d& g, cv::Point2d world, bool pitched) {
+  const cv::Matx22d j = homography_jacobian(g, world);
+  if (!pitched) return 1.0 / std::sqrt(std::abs(cv::determinant(j)));
+  cv::Mat singular;
+  cv::SVD::compute(cv::Mat(j), singular, cv::SVD::NO_UV);
+  return 1.0 / singular.at<double>(0);  // px per metre along the best-resolved direction
+}
+
 ViewArea view_area(const detail::CameraPath& camera, const Scenario& s) {
   ViewArea area;
   std::vector<cv::Point2d> corners;
   const double dt = 1.0 / s.fps;
   const int samples = std::min(s.frames, 200);
+  const std::vector<cv::Point2d> image_points = view_samples(s);
+  const bool pitched = s.camera.pitch_deg != 0.0;
   area.min_gsd_m = 1e300;
   for (int i = 0; i <= samples; ++i) {
     const double t = (s.frames - 1) * dt * i / std::max(1, samples);
     const cv::Matx33d world_from_image = camera.image_from_world(t).inv();
-    for (double fx : {-0.5, 0.5})
-      for (double fy : {-0.5, 0.5}) {
-        const cv::Point2d img((s.camera.width - 1) / 2.0 + fx * (s.camera.width + 8), (s.camera.height - 1) / 2.0 + fy * (s.camera.height + 8));
-        corners.push_back(apply_homography(world_from_image, img));
-      }
-    // Finest ground resolution seen anywhere in the image (tilt makes it vary slightly).
+    const size_t first = corners.size();
+    for (const cv::Point2d& img : image_points) corners.push_back(apply_homography(world_from_image, img));
+    // Finest ground resolution seen anywhere in the image (tilt makes it vary).
     const cv::Matx33d g = camera.image_from_world(t);
-    for (const cv::Point2d& w : {corners[corners.size() - 1], corners[corners.size() - 2], corners[corners.size() - 3], corners[corners.size() - 4]}) {
-      const cv::Matx22d j = homography_jacobian(g, w);
-      const double scale = std::sqrt(std::abs(cv::determinant(j)));  // px per metre
-      area.min_gsd_m = std::min(area.min_gsd_m, 1.0 / scale);
-    }
+    for (size_t k = corners.size(); k-- > first;) area.min_gsd_m = std::min(area.min_gsd_m, ground_gsd(g, corners[k], pitched));
   }
   double x0 = 1e300, y0 = 1e300, x1 = -1e300, y1 = -1e300;
   for (const auto& c : corners) {
@@ -65,6 +86,18 @@ ViewArea view_area(const detail::CameraPath& camera, const Scenario& s) {
   return area;
 }
 
+// Adds each id's pixel count in the mask to pixels[id].first (or .second).
+void count_pixels(const cv::Mat& mask, std::map<int, std::pair<int64_t, int64_t>>& pixels, bool second) {
+  for (int y = 0; y < mask.rows; ++y) {
+    const int32_t* row = mask.ptr<int32_t>(y);
+    for (int x = 0; x < mask.cols; ++x) {
+      if (row[x] == 0) continue;
+      auto& count = pixels[row[x]];
+      ++(second ? count.second : count.first);
+    }
+  }
+}
+
 }  // namespace
 
 class Simulator::Impl {
@@ -76,7 +109,8 @@ class Simulator::Impl {
         area_(view_area(camera_, scenario_)),
         network_(detail::make_road_network(scenario_, area_.centre_m, area_.radius_m + 40.0, area_.radius_m, seed)),
         ground_(detail::build_ground_raster(scenario_, network_, area_.region_m, area_.min_gsd_m, seed)),
-        traffic_(scenario_, network_, area_.centre_m, area_.radius_m, seed) {
+        traffic_(scenario_, network_, area_.centre_m, area_.radius_m, seed),
+        structures_(detail::place_structures(scenario_, network_, area_.region_m, seed), scenario_.structures) {
     const double dt = 1.0 / scenario_.fps;
     const int warmup_steps = static_cast<int>(std::lround(scenario_.traffic.warmup_s * scenario_.fps));
     for (int i = 0; i < warmup_steps; ++i) traffic_.step(dt);
@@ -97,6 +131,7 @@ class Simulator::Impl {
   detail::GroundRaster ground_;
   detail::Traffic traffic_;
   detail::ShadowParams shadow_;
+  detail::StructureRenderer structures_;
   int64_t index_ = 0;  // frames produced
   cv::Matx33d previous_image_from_world_;
   std::map<int, int> public_ids_;  // internal id -> id in the output
@@ -141,8 +176,18 @@ bool Simulator::Impl::next(SimFrame& frame) {
     drawn.push_back(v);
     ids.push_back(it->second);
   }
-  frame.object_id_mask = cv::Mat::zeros(size, CV_32S);
+  // A fresh buffer each frame: callers keep SimFrame copies (cv::Mat copies share data).
+  frame.object_id_mask = cv::Mat(size, CV_32S, cv::Scalar(0));
   detail::render_vehicles(canvas, frame.object_id_mask, drawn, ids, image_from_world, shadow_);
+  // Structures stand in front of the ground and of every vehicle (vehicles are flat on the
+  // ground and never inside a structure), so they are drawn last and hide what is behind.
+  std::map<int, std::pair<int64_t, int64_t>> pixels;  // id -> (drawn, still seen)
+  frame.structures.clear();
+  if (!structures_.empty()) {
+    count_pixels(frame.object_id_mask, pixels, false);
+    frame.structures = structures_.render(canvas, frame.object_id_mask, camera_.projection(t), camera_.centre(t));
+    count_pixels(frame.object_id_mask, pixels, true);
+  }
 
   // Sensor: gain drift and contrast, optics blur, noise, 8-bit quantisation, JPEG.
   const SensorParams& sensor = scenario_.sensor;
@@ -176,6 +221,9 @@ bool Simulator::Impl::next(SimFrame& frame) {
     truth.moving = !v.parked && v.speed_mps >= scenario_.traffic.moving_threshold_mps;
     truth.box = boxes[v.internal_id].first;
     truth.visibility = boxes[v.internal_id].second;
+    // Hidden by structures: scale the in-image fraction by the share of its pixels still seen.
+    if (const auto it = pixels.find(truth.id); it != pixels.end() && it->second.first > 0)
+      truth.visibility *= static_cast<double>(it->second.second) / static_cast<double>(it->second.first);
     truth.kind = v.kind;
     const cv::Point2d now = apply_homography(image_from_world, v.position_m);
     const cv::Point2d before = apply_homography(image_from_world, v.position_m - v.velocity_mps * dt);
@@ -212,6 +260,15 @@ SceneInfo Simulator::scene() const {
   scene.vehicle_length_m = 4.5;
   scene.vehicle_width_m = 1.8;
   return scene;
+}
+
+const char* structure_kind_name(StructureKind kind) {
+  switch (kind) {
+    case StructureKind::Building: return "building";
+    case StructureKind::Tree: return "tree";
+    case StructureKind::Wall: return "wall";
+  }
+  return "?";
 }
 
 int object_at(const SimFrame& frame, cv::Point2d point, double tolerance_px) {

@@ -12,7 +12,7 @@ TEST(Scenario, EveryPresetIsValidAndNamed) {
     EXPECT_EQ(s.name, name);
     EXPECT_NO_THROW(validate_scenario(s)) << name;
   }
-  EXPECT_EQ(preset_names().size(), 7u);
+  EXPECT_EQ(preset_names().size(), 9u);
 }
 
 TEST(Scenario, UnknownPresetListsTheKnownNames) {
@@ -111,6 +111,29 @@ TEST(Scenario, BadYamlNamesTheFileAndKey) {
   EXPECT_NE(load_error("traffic:\n  speed_min_mps: 20\n  speed_max_mps: 10\n").find("speed_min_mps"), std::string::npos);
   EXPECT_NE(load_error("camera: [1, 2]\n").find("camera"), std::string::npos);
   EXPECT_THROW(load_scenario_file("/nonexistent/scenario.yaml"), InputError);
+}
+
+TEST(Scenario, StructuresReadCheckAndRoundTrip) {
+  const Scenario s = load_scenario(ConfigNode::load_string(
+      "preset: paper\ncamera: {pitch_deg: 25}\nstructures:\n  building_density_per_ha: 2\n  tree_height_max_m: 12\n", "t.yaml"));
+  EXPECT_DOUBLE_EQ(s.camera.pitch_deg, 25.0);
+  EXPECT_DOUBLE_EQ(s.structures.building_density_per_ha, 2.0);
+  EXPECT_DOUBLE_EQ(s.structures.tree_height_max_m, 12.0);
+  const Scenario back = load_scenario(ConfigNode::load_string(scenario_to_yaml(s), "back.yaml"));
+  EXPECT_EQ(scenario_to_yaml(back), scenario_to_yaml(s));
+  EXPECT_EQ(preset_scenario("paper").structures.building_density_per_ha, 0.0);  // flat by default
+  EXPECT_GT(preset_scenario("urban3d").structures.building_density_per_ha, 0.0);
+  EXPECT_DOUBLE_EQ(preset_scenario("oblique").camera.pitch_deg, 30.0);
+  // Bad values name the file, line and key.
+  const std::string typo = load_error("structures:\n  bilding_density_per_ha: 1\n");
+  EXPECT_NE(typo.find("bilding_density_per_ha"), std::string::npos);
+  EXPECT_NE(typo.find("bad.yaml"), std::string::npos);
+  EXPECT_NE(load_error("structures:\n  building_height_min_m: 40\n  building_height_max_m: 20\n").find("building_height_min_m"),
+            std::string::npos);
+  EXPECT_NE(load_error("camera:\n  pitch_deg: 60\n").find("pitch_deg"), std::string::npos);
+  EXPECT_NE(load_error("camera: {altitude_m: 40}\nstructures: {building_density_per_ha: 1, building_height_max_m: 30}\n")
+                .find("altitude"),
+            std::string::npos);
 }
 
 }  // namespace

@@ -2,7 +2,7 @@
 // Scores predictions against ground truth (docs/eval.md):
 //   - paper Table I: completeness per moving object per frame (correct / under- / over-segmented / missed)
 //   - paper Table II: mean absolute errors of cx, cy, width, length over correct instances (px and m)
-//   - false alarms, and how many of them sit on parked vehicles
+//   - false alarms, and how many of them sit on parked vehicles or on static structures
 //   - CLEAR MOT, IDF1 and HOTA as TrackEval computes them, at IoU 0.5 and 0.3
 //   - homography transfer error and moving-feature precision/recall when those are given
 //
@@ -67,8 +67,14 @@ struct FalseAlarms {
   int64_t false_alarms = 0;     // boxes on no moving object
   int64_t on_parked = 0;        // of those, on a parked vehicle
   int64_t on_stopped = 0;       // of those, on a temporarily stopped (not parked) vehicle
+  // Of the false alarms, those on a static 3-D structure (building, tree or wall; counted
+  // only when the sequence has structures, by the kind it overlaps most).
+  bool structures_known = false;
+  int64_t on_structure = 0;
+  int64_t on_building = 0, on_tree = 0, on_wall = 0;
   int64_t frames = 0;
   double per_frame() const { return frames > 0 ? static_cast<double>(false_alarms) / static_cast<double>(frames) : 0.0; }
+  double on_structure_per_frame() const { return frames > 0 ? static_cast<double>(on_structure) / static_cast<double>(frames) : 0.0; }
 };
 
 struct ClearMot {

@@ -36,17 +36,27 @@ struct GroundTruthObject {
   double visibility = 1.0;
 };
 
+// A static structure (building, tree, wall) in one frame: its silhouette in the image.
+struct StructureOutline {
+  int64_t id = 0;
+  std::string kind;                  // "building", "tree" or "wall"
+  std::vector<cv::Point2d> outline;  // convex polygon, image px
+};
+
 struct Sequence {
   SequenceInfo info;
   std::map<int64_t, std::vector<GroundTruthObject>> objects;  // frame -> every vehicle in it
   std::map<int64_t, Homography> homographies;                 // frame -> true homography k-1 -> k
   // Per-frame object-id image (CV_32S or CV_16U, 0 = background); empty Mat when unknown.
   std::function<cv::Mat(int64_t frame)> id_mask;
+  // Static 3-D structures per frame (gt/structures.csv); has_structures is false for a flat world.
+  bool has_structures = false;
+  std::map<int64_t, std::vector<StructureOutline>> structures;
 };
 
 // Reads seqinfo.ini and gt/ of an MOTChallenge folder written by `uavmot sim`:
 // gt/gt_obb.csv (preferred) or gt/all_objects.txt or gt/gt.txt; gt/homographies.txt and
-// gt/masks/ when present. Throws InputError naming the file and line on anything malformed.
+// gt/masks/ and gt/structures.csv when present. Throws InputError naming the file and line on anything malformed.
 Sequence load_sequence(const std::string& directory);
 
 // Parses an INI-style seqinfo.ini.

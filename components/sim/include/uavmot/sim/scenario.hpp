@@ -10,7 +10,7 @@
 
 namespace uavmot::sim {
 
-// The virtual nadir camera and its smooth trajectory.
+// The virtual camera (nadir unless pitched) and its smooth trajectory.
 struct CameraParams {
   int width = 1024;               // px
   int height = 768;               // px
@@ -26,6 +26,7 @@ struct CameraParams {
   double altitude_period_s = 12.0;
   double tilt_deg = 1.0;          // amplitude of the pitch and roll wobble (perspective)
   double wobble_period_s = 9.0;   // period of the yaw/tilt wobble
+  double pitch_deg = 0.0;         // mean forward pitch (oblique view); 0 = nadir. The tilt wobble adds to it
 };
 
 // The ground: real aerial texture with roads drawn on it.
@@ -75,6 +76,32 @@ struct TrafficParams {
   double shadow_strength = 0.45;      // 0 = no shadow, 1 = black
 };
 
+// Static 3-D structure standing on the ground: buildings, trees and walls. They are placed
+// from the seed off the asphalt, and drawn with the true pinhole camera, so their upper parts
+// show parallax against the ground plane. Densities are per hectare of the ground the
+// sequence sees; all zero (the default) = a flat world.
+struct StructureParams {
+  double building_density_per_ha = 0.0;
+  double building_size_min_m = 10.0;   // footprint sides, uniform in [min, max]
+  double building_size_max_m = 30.0;
+  double building_height_min_m = 5.0;
+  double building_height_max_m = 30.0;
+  double building_roadside_fraction = 0.5;  // share placed right beside a road or parking lot
+  double tree_density_per_ha = 0.0;
+  double tree_radius_min_m = 2.0;      // canopy radius
+  double tree_radius_max_m = 6.0;
+  double tree_height_min_m = 5.0;      // top of the canopy
+  double tree_height_max_m = 20.0;
+  double tree_roadside_fraction = 0.5;  // share standing at a road edge with the canopy over the asphalt
+  double wall_density_per_ha = 0.0;
+  double wall_length_min_m = 10.0;
+  double wall_length_max_m = 40.0;
+  double wall_height_min_m = 1.5;
+  double wall_height_max_m = 4.0;
+  double sun_azimuth_deg = 215.0;      // direction the light comes from (world x-axis = 0), shades the walls
+  double sun_elevation_deg = 45.0;
+};
+
 // What the sensor does to the image.
 struct SensorParams {
   double blur_sigma_px = 0.6;
@@ -120,6 +147,7 @@ struct Scenario {
   GroundParams ground;
   RoadParams roads;
   TrafficParams traffic;
+  StructureParams structures;
   SensorParams sensor;
   std::vector<ScriptedVehicle> scripted;  // YAML: a `scripted:` list (docs/sim.md)
 };

@@ -32,9 +32,24 @@ struct ObjectTruth {
   bool parked = false;     // a parked vehicle: never moves
   OrientedBox box;         // true footprint in the image (continuous coordinates)
   cv::Vec2d velocity_px;   // motion relative to the ground, in px/frame of this image
-  double visibility = 1.0; // fraction of the footprint inside the image
+  // Fraction of the footprint that is seen: inside the image and not hidden by a building,
+  // tree or wall (0 = entirely hidden; the vehicle is still listed while inside the image).
+  double visibility = 1.0;
   VehicleKind kind = VehicleKind::Car;
   double speed_mps = 0.0;  // ground speed
+};
+
+enum class StructureKind : uint8_t { Building = 0, Tree = 1, Wall = 2 };
+const char* structure_kind_name(StructureKind kind);  // "building", "tree", "wall"
+
+// A static 3-D structure that is at least partly inside the image: its silhouette (roof,
+// walls, canopy, trunk) as the convex hull of its projected 3-D outline, whether or not
+// another structure hides part of it.
+struct StructureTruth {
+  int id = 0;  // from 1, fixed for the sequence (own numbering, not vehicle ids)
+  StructureKind kind = StructureKind::Building;
+  double height_m = 0.0;
+  std::vector<cv::Point2d> outline;  // convex, image px (continuous coordinates), not clipped to the image
 };
 
 struct SimFrame {
@@ -43,7 +58,10 @@ struct SimFrame {
   Homography homography_from_previous = Homography::eye();  // frame k-1 -> k, h33 = 1; identity for frame 1
   Homography ground_to_image = Homography::eye();           // ground raster px -> image px
   std::vector<ObjectTruth> objects;                         // ordered by id
-  cv::Mat object_id_mask;  // CV_32S, 0 background, else the id of the vehicle covering >= half the pixel
+  // CV_32S, 0 background, else the id of the vehicle covering >= half the pixel; pixels a
+  // structure covers by at least half are 0 (only the visible part of a vehicle is marked).
+  cv::Mat object_id_mask;
+  std::vector<StructureTruth> structures;  // in view, ordered by id; empty in a flat world
   std::vector<uint8_t> encoded_jpeg;  // the JPEG bytes `image` was decoded from
 };
 
