@@ -14,8 +14,8 @@ MotionOptions load_motion_options(const ConfigNode& node) {
                     "min_tracked_ratio", "max_motion_fraction", "max_scale_change", "refine", "refine_loss",
                     "refine_loss_scale_px", "refine_max_iterations", "refine_max_points", "refine_exclude_moving", "background_flow_degree", "history_frames",
                     "min_track_frames", "position_sigma_px", "prior_weight", "moving_sigma_factor",
-                    "min_moving_speed_px", "min_moving_speed_mps", "scene_noise_factor", "confirm_frames", "release_ratio", "parallax_rejection", "parallax_both_sides",
-                    "parallax_min_support", "parallax_min_support_fraction", "parallax_min_spread", "parallax_stable_frames",
+                    "min_moving_speed_px", "min_moving_speed_mps", "scene_noise_factor", "scene_noise_max_px", "confirm_frames", "release_ratio", "parallax_rejection", "parallax_both_sides",
+                    "parallax_min_support", "parallax_min_support_fraction", "parallax_min_share", "parallax_min_spread", "parallax_stable_frames",
                     "parallax_stable_angle_deg", "parallax_across_sigma", "parallax_across_floor_px", "parallax_cap_factor",
                     "parallax_ransac_iterations"});
   node.read("max_features", o.max_features, 10, 100000);
@@ -59,12 +59,14 @@ MotionOptions load_motion_options(const ConfigNode& node) {
   node.read("min_moving_speed_px", o.min_moving_speed_px, 0.0, 1000.0);
   node.read("min_moving_speed_mps", o.min_moving_speed_mps, 0.0, 1000.0);
   node.read("scene_noise_factor", o.scene_noise_factor, 0.0, 100.0);
+  node.read("scene_noise_max_px", o.scene_noise_max_px, 0.0, 1000.0);
   node.read("confirm_frames", o.confirm_frames, 1, 100);
   node.read("release_ratio", o.release_ratio, 0.0, 1.0);
   node.read("parallax_rejection", o.parallax_rejection);
   node.read("parallax_both_sides", o.parallax_both_sides);
   node.read("parallax_min_support", o.parallax_min_support, 2, 100000);
   node.read("parallax_min_support_fraction", o.parallax_min_support_fraction, 0.0, 1.0);
+  node.read("parallax_min_share", o.parallax_min_share, 0.0, 1.0);
   node.read("parallax_min_spread", o.parallax_min_spread, 0.0, 1.0);
   node.read("parallax_stable_frames", o.parallax_stable_frames, 1, 1000);
   node.read("parallax_stable_angle_deg", o.parallax_stable_angle_deg, 0.0, 90.0);
@@ -128,7 +130,7 @@ void validate(const MotionOptions& o) {
   require(o.position_sigma_px > 0.0, "position_sigma_px must be > 0");
   require(o.prior_weight >= 0.0, "prior_weight must be >= 0");
   require(o.moving_sigma_factor >= 0.0 && o.min_moving_speed_px >= 0.0 && o.min_moving_speed_mps >= 0.0 &&
-              o.scene_noise_factor >= 0.0,
+              o.scene_noise_factor >= 0.0 && o.scene_noise_max_px >= 0.0,
           "moving thresholds must be >= 0");
   require(o.confirm_frames >= 1, "confirm_frames must be >= 1");
   require(o.release_ratio >= 0.0 && o.release_ratio <= 1.0, "release_ratio must be in [0, 1]");
@@ -136,6 +138,7 @@ void validate(const MotionOptions& o) {
   require(o.parallax_min_support_fraction >= 0.0 && o.parallax_min_support_fraction <= 1.0,
           "parallax_min_support_fraction must be in [0, 1]");
   require(o.parallax_min_spread >= 0.0 && o.parallax_min_spread <= 1.0, "parallax_min_spread must be in [0, 1]");
+  require(o.parallax_min_share >= 0.0 && o.parallax_min_share <= 1.0, "parallax_min_share must be in [0, 1]");
   require(o.parallax_stable_frames >= 1, "parallax_stable_frames must be >= 1");
   require(o.parallax_stable_angle_deg >= 0.0 && o.parallax_stable_angle_deg <= 90.0, "parallax_stable_angle_deg must be in [0, 90]");
   require(o.parallax_across_sigma >= 0.0 && o.parallax_across_floor_px >= 0.0 && o.parallax_cap_factor >= 0.0,

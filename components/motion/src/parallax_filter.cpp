@@ -201,6 +201,7 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
 
   const double min_side = std::min(image_size.width, image_size.height);
   model_.valid = model_.support >= o.parallax_min_support &&
+                 model_.support >= o.parallax_min_share * static_cast<double>(samples.size()) &&
                  model_.support >= o.parallax_min_support_fraction * static_cast<double>(significant.size()) &&
                  model_.spread_px >= o.parallax_min_spread * min_side && model_.stable_frames >= o.parallax_stable_frames;
   return model_;

@@ -57,7 +57,7 @@ double scene_noise_floor(std::vector<double> speeds, const MotionOptions& o) {
   if (!(o.scene_noise_factor > 0.0) || speeds.size() < 20) return 0.0;
   const auto middle = speeds.begin() + static_cast<long>(speeds.size() / 2);
   std::nth_element(speeds.begin(), middle, speeds.end());
-  return o.scene_noise_factor * *middle / 1.1774;
+  return std::min(o.scene_noise_factor * *middle / 1.1774, o.scene_noise_max_px);
 }
 
 bool MotionClassifier::update(const VelocityEstimate& e, int track_frames, const MotionOptions& o, double floor_px) {

@@ -49,7 +49,9 @@ bool is_tracking_slip(const Homography& h, const cv::Point2f& from, const cv::Po
 // all classified features (median speed / 1.1774, the median of a 2-D Gaussian's norm). Each
 // feature's sigma comes from its own line fit, which misses slow drifts that real imagery has
 // (JPEG, appearance change, shimmering trees); the whole frame's spread does not. Moving objects
-// are few, so the median ignores them. 0 when off or with fewer than 20 speeds.
+// are few, so the median ignores them. At most scene_noise_max_px: a frame whose whole field is
+// off (a fast turn the velocity fits lag behind) must not hide every vehicle. 0 when off or with
+// fewer than 20 speeds.
 double scene_noise_floor(std::vector<double> speeds, const MotionOptions& options);
 
 // Moving/stationary decision with hysteresis: a feature becomes moving after confirm_frames

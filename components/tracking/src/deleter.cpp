@@ -2,11 +2,14 @@
 
 #include <algorithm>
 #include <bit>
+#include <cmath>
+
+#include "uavmot/tracking/kalman_model.hpp"
 
 namespace uavmot::tracking {
 
 void record_frame(TrackRecord& track, bool region_hit, bool supported, const TrackerOptions& options,
-                  bool may_bridge_gap) {
+                  bool may_bridge_gap, double confirm_min_speed_px) {
   ++track.age;
   const uint32_t window_mask = options.confirm_window >= 32 ? 0xffffffffu : ((1u << options.confirm_window) - 1u);
   track.hit_history = ((track.hit_history << 1) | (region_hit ? 1u : 0u)) & window_mask;
@@ -16,7 +19,8 @@ void record_frame(TrackRecord& track, bool region_hit, bool supported, const Tra
     const int hits = std::popcount(track.hit_history);
     const bool by_features = options.confirm_hits_with_features > 0 && hits >= options.confirm_hits_with_features &&
                              static_cast<int>(track.features.size()) >= options.confirm_min_features;
-    if (hits >= options.confirm_hits || by_features) track.state = TrackState::Confirmed;
+    const bool goes_somewhere = std::hypot(track.mean[kVx], track.mean[kVy]) >= confirm_min_speed_px;
+    if ((hits >= options.confirm_hits || by_features) && goes_somewhere) track.state = TrackState::Confirmed;
     return;
   }
   const bool bridged = may_bridge_gap && static_cast<int>(track.frames_since_update) <= options.gap_frames &&

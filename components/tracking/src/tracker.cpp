@@ -179,6 +179,7 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   const RegionAssociation association = associate_regions(regions, predicted, options_.min_intersection_fraction);
   const cv::Size2d max_object_size(scene_.metres_to_px(scene_.vehicle_width_m) * options_.single_object_size_factor,
                                    scene_.metres_to_px(scene_.vehicle_length_m) * options_.single_object_size_factor);
+  const double confirm_min_speed_px = scene_.fps > 0.0 ? scene_.metres_to_px(options_.confirm_min_speed_mps) / scene_.fps : 0.0;
   const cv::Size2d largest_object(scene_.metres_to_px(options_.max_object_width_m),
                                   scene_.metres_to_px(scene_.vehicle_length_m) * options_.max_object_length_factor);
   const SplitMergeResult resolved = resolve_split_merge(association, regions, state_.tracks, predicted, velocities,
@@ -246,7 +247,7 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   for (size_t i = 0; i < n; ++i) {
     TrackRecord& t = state_.tracks[i];
     if (absorbed[i]) continue;  // a piece of another track's object
-    record_frame(t, region_hit[i], supported[i], options_, wholly_inside_view(posterior[i], options_));
+    record_frame(t, region_hit[i], supported[i], options_, wholly_inside_view(posterior[i], options_), confirm_min_speed_px);
     switch (decide_fate(t, inside_view(posterior[i], options_), options_)) {
       case Fate::Keep:
         live_boxes.push_back(posterior[i]);

@@ -57,6 +57,7 @@ struct MotionOptions {
   double min_moving_speed_px = 0.15;   // ... and > this (px/frame)
   double min_moving_speed_mps = 0.0;   // ... and > this ground speed (m/s, via SceneInfo); 0 = unused
   double scene_noise_factor = 6.0;     // ... and > this times the frame's robust velocity noise (0 = unused)
+  double scene_noise_max_px = 0.25;    // ... which counts up to this (px/frame)
   int confirm_frames = 2;           // consecutive significant frames to become moving (and to stop)
   double release_ratio = 0.7;       // a moving feature stops below this fraction of the threshold
 
@@ -66,6 +67,8 @@ struct MotionOptions {
                                     // fits a plane between ground and roofs); false: one side only
   int parallax_min_support = 12;    // features on one epipole's lines before it is trusted
   double parallax_min_support_fraction = 0.5;  // ... and this share of the features with a clear residual
+  double parallax_min_share = 0.25;    // ... and this share of ALL classified features: structure is
+                                       // everywhere; movers (which can line up at a junction) are few
   double parallax_min_spread = 0.1;    // ... spread over this fraction of the smaller image side (1-sigma)
   int parallax_stable_frames = 3;      // ... found again, within parallax_stable_angle_deg, this many frames running
   double parallax_stable_angle_deg = 8.0;

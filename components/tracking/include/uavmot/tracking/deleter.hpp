@@ -23,8 +23,10 @@ bool wholly_inside_view(const OrientedBox& box, const TrackerOptions& options);
 // Records one frame in the track's history: a region hit, support by features only, or nothing.
 // An established track that misses a frame stays confirmed for `gap_frames` when `may_bridge_gap`
 // (the caller passes false at the image border, where a vehicle misses its regions because it leaves).
+// A tentative track is confirmed only when its estimated speed is at least `confirm_min_speed_px`
+// (px/frame; the tracker converts TrackerOptions::confirm_min_speed_mps with the scene's GSD and fps).
 void record_frame(TrackRecord& track, bool region_hit, bool supported, const TrackerOptions& options,
-                  bool may_bridge_gap = true);
+                  bool may_bridge_gap = true, double confirm_min_speed_px = 0.0);
 
 // What happens to a live track after record_frame().
 // `in_view`: see inside_view(); a track that left the view goes dormant (confirmed) or is deleted.

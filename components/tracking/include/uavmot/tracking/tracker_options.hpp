@@ -99,6 +99,10 @@ struct TrackerOptions {
   // it (clutter has none); 0 disables.
   int confirm_hits_with_features = 2;
   int confirm_min_features = 2;
+  // A tentative track confirms only once its estimated ground speed reaches this: roofs, trees and
+  // parked cars whose features jitter make regions too, but they do not go anywhere. Once confirmed
+  // a track may stop (stop-and-go). 0 disables.
+  double confirm_min_speed_mps = 1.0;
   int tentative_max_misses = 1;             // a tentative track missing more frames in a row is deleted
   int max_coast_frames = 5;                 // a confirmed track coasts this many frames on prediction
   // An established track (at least gap_min_hits region hits) that misses up to this many frames in a

@@ -1,0 +1,80 @@
+#!/usr/bin/env bash
+# The validation protocol (docs/tracking.md): simulates and scores many seeds of every preset with
+# the whole chain (`uavmot process`, default configuration or --config) and prints one table per
+# seed set with the mean and the worst seed of each figure. Tuning uses seeds 1-5 (--tuning); the
+# held-out seeds 100-109 (--held-out) are the ones to report. Sequences are cached under --work.
+#   bash tools/validate.sh [--tuning | --held-out | --seeds "A B ..."] [--frames N] [--jobs J]
+#                          [--config FILE] [--work DIR] [--label NAME] [PRESET...]
+#   (default: --held-out, 250 frames, 2 jobs, presets paper hd small lowsnr fastcam dense slow urban3d oblique)
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seeds="100 101 102 103 104 105 106 107 108 109" frames=250 jobs=2 config="" work=out/validation label=default presets=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --tuning) seeds="1 2 3 4 5" ;;
+    --held-out) seeds="100 101 102 103 104 105 106 107 108 109" ;;
+    --seeds) seeds=$2; shift ;;
+    --frames) frames=$2; shift ;;
+    --jobs) jobs=$2; shift ;;
+    --config) config=$(realpath "$2"); shift ;;
+    --work) work=$2; shift ;;
+    --label) label=$2; shift ;;
+    -h|--help) sed -n 2,9p "$0"; exit 0 ;;
+    -*) echo "validate: unknown option '$1'" >&2; exit 2 ;;
+    *) presets+=("$1") ;;
+  esac
+  shift
+done
+[ ${#presets[@]} -gt 0 ] || presets=(paper hd small lowsnr fastcam dense slow urban3d oblique)
+bin=build/bin/uavmot
+[ -x "$bin" ] || { echo "validate: $bin is missing; build first (bash tools/build.sh)" >&2; exit 1; }
+mkdir -p "$work"
+
+# One run: simulate (cached), process, evaluate; leaves $work/<label>/<preset>-<seed>/eval.json.
+run_one() {
+  local preset=$1 seed=$2 seq="$work/seq/$1-$2-f$frames" out="$work/$label/$1-$2"
+  if [ ! -f "$seq/done" ]; then
+    rm -rf "$seq"
+    "$bin" sim --preset "$preset" --seed "$seed" --frames "$frames" --out "$seq" --quiet >/dev/null 2>&1 && touch "$seq/done"
+  fi
+  rm -rf "$out"
+  "$bin" process "$seq" --out "$out" --quiet --log-level warn ${config:+--config "$config"} >"$out.log" 2>&1 &&
+    "$bin" eval --seq "$seq" --pred "$out/tracks.txt" --obb "$out/tracks_obb.csv" --features "$out/features.csv" \
+      --json "$out/eval.json" >/dev/null 2>>"$out.log" || echo "validate: $preset seed $seed failed (log: $out.log)" >&2
+}
+export -f run_one
+export bin work frames label config
+mkdir -p "$work/$label"
+for preset in "${presets[@]}"; do for seed in $seeds; do echo "$preset $seed"; done; done |
+  xargs -P "$jobs" -L 1 bash -c 'run_one "$0" "$1"'
+
+python3 - "$work/$label" "$seeds" "${presets[@]}" <<'PY'
+import json, os, sys
+root, seeds, presets = sys.argv[1], sys.argv[2].split(), sys.argv[3:]
+cols = [("correct %", lambda e: 100 * e["completeness"]["correct_rate"], min),
+        ("under %", lambda e: 100 * e["completeness"]["under_segmented_rate"], max),
+        ("over %", lambda e: 100 * e["completeness"]["over_segmented_rate"], max),
+        ("e_x px", lambda e: e["precision"]["error_x_px"], max),
+        ("e_y px", lambda e: e["precision"]["error_y_px"], max),
+        ("FA / frame", lambda e: e["false_alarms"]["per_frame"], max),
+        ("on parked", lambda e: e["false_alarms"]["on_parked"], max),
+        ("on structure / frame", lambda e: e["false_alarms"].get("on_structure_per_frame", 0.0), max),
+        ("feature precision", lambda e: e["features"]["precision"], min),
+        ("feature recall", lambda e: e["features"]["recall"], min)]
+print(f"seeds {seeds}, root {root}: mean (worst seed)\n")
+print("| preset | seeds | " + " | ".join(c[0] for c in cols) + " |")
+print("|---|---:|" + "---:|" * len(cols))
+for p in presets:
+    runs = []
+    for s in seeds:
+        f = os.path.join(root, f"{p}-{s}", "eval.json")
+        if os.path.exists(f):
+            runs.append(json.load(open(f)))
+    if not runs:
+        print(f"| {p} | 0 |" + " |" * len(cols)); continue
+    cells = []
+    for name, get, worst in cols:
+        vals = [get(e) for e in runs]
+        cells.append(f"{sum(vals) / len(vals):.2f} ({worst(vals):.2f})")
+    print(f"| {p} | {len(runs)} | " + " | ".join(cells) + " |")
+PY
