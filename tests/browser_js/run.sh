@@ -19,6 +19,6 @@ if [[ ! -f "$here/node_modules/.package-lock.json" || "$here/package-lock.json" 
 fi
 rm -rf "$out"
 mkdir -p "$out"
-"$bin/uavmot-sim" --preset paper --seed 7 --frames 30 --out "$out/paper" > "$out/sim.log"
+"$bin/uavmot-sim" --preset paper --seed 1 --frames 30 --out "$out/paper" > "$out/sim.log"
 "$bin/uavmot-process" "$out/paper" --out "$out/result" --video "$out/annotated.mp4" --quiet
 node "$here/play.mjs" "$out/annotated.mp4" --size 1024x768 --png "$out/frame.png"
