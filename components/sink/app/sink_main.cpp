@@ -317,7 +317,8 @@ int sink_main(int argc, char** argv) {
                    "the source's input video (MPEG-TS with KLV, from its first frame): adds tracks.geojson, lat,lon columns and "
                    "its GSD when --gsd is not given");
     dds::add_node_options(app, node);
-    return [&]() -> int {
+    // fps_option by value: it is a local of this set-up function, which returns before the run.
+    return [&, fps_option]() -> int {
       dds::finalize(node, "sink");
       if (!o.preview_dir.empty() && !o.downlink) throw InputError("--preview-dir needs --downlink");
       if (o.gsd_m > 0) o.gsd_source = "flag";
