@@ -20,6 +20,9 @@ packages=(
   iproute2 nftables procps psmisc python3
   # containers: podman (runc: crun cannot set ulimits here), podman-compose, debootstrap for the base image
   podman runc podman-compose debootstrap
+  # browser tests: the annotated mp4 plays in headless Chromium (tests/browser_js, playwright-core
+  # drives Debian's /usr/bin/chromium; playwright's own browser download is not used)
+  chromium
 )
 
 # MCAP validation (tests/mcap_js): node and npm run the official MCAP reader. Debian's nodejs

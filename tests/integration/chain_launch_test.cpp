@@ -63,6 +63,33 @@ TEST_F(ChainLaunch, LosslessTracksAreByteIdenticalToInProcess) {
   EXPECT_NE(launch.log().find("[sink"), std::string::npos);
 }
 
+// With flight metadata: the sequence as H.264 muxed with aphill_short.ts's KLV stream. The sink reads
+// the metadata itself (`--set metadata=FILE`, uavmot sink --metadata) and writes the same
+// tracks.geojson and lat,lon columns as the in-process run, byte for byte.
+TEST_F(ChainLaunch, SinkWithMetadataWritesTheSameTracksGeojsonAsProcess) {
+  const std::string ts = root_ + "/klv.ts";
+  ChildProcess mux({"/usr/bin/ffmpeg", "-nostdin", "-v", "error", "-y", "-framerate", "25", "-i", sequence_ + "/img1/%06d.jpg", "-i",
+                    std::string(UAVMOT_DATA_DIR) + "/aphill/aphill_short.ts", "-map", "0:v", "-map", "1:d", "-c:v", "libx264",
+                    "-preset", "veryfast", "-pix_fmt", "yuv420p", "-c:d", "copy", "-f", "mpegts", ts},
+                   root_ + "/mux.log");
+  ASSERT_EQ(mux.wait(std::chrono::seconds(120)), 0) << mux.log();
+  // The launcher's GSD for an input without seqinfo.ini is 0.35; the same here, so only the map differs from usual.
+  ChildProcess process({binary("uavmot-process"), ts, "--out", root_ + "/klv_process", "--gsd", "0.35", "--quiet"},
+                       root_ + "/klv_process.log");
+  ASSERT_EQ(process.wait(std::chrono::seconds(240)), 0) << process.log();
+  const std::string out = root_ + "/klv_launch";
+  ChildProcess launch({binary("uavmot"), "launch", kProfile, "--input", ts, "--out", out, "--set", "domain=37", "--set", "metadata=" + ts},
+                      root_ + "/klv_launch.log");
+  ASSERT_EQ(launch.wait(std::chrono::seconds(240)), 0) << launch.log();
+  const std::string expected = read_file(root_ + "/klv_process/tracks.geojson");
+  ASSERT_NE(expected.find("LineString"), std::string::npos) << "no track on the map: nothing would be compared";
+  EXPECT_EQ(read_file(out + "/tracks.geojson"), expected);
+  for (const char* file : {"tracks.txt", "tracks_obb.csv"}) {
+    EXPECT_EQ(read_file(out + "/" + file), read_file(root_ + "/klv_process/" + file)) << file;
+  }
+  EXPECT_NE(read_file(out + "/tracks_obb.csv").find(",lat,lon\n"), std::string::npos);
+}
+
 // `--set view=true --set record=true` adds the viewer and the recorder, and every writer of a
 // lossless chain counts them (${readers:TOPIC}): the video has every frame, the recording every
 // sample, and the chain's results stay identical to the in-process run.

@@ -29,7 +29,8 @@ PrintedRegion printed_region(const Region& region) {
           printed_fixed(region.score, 3)};
 }
 
-ResultFilesWriter::ResultFilesWriter(ResultFilesOptions options) : options_(std::move(options)) {
+ResultFilesWriter::ResultFilesWriter(ResultFilesOptions options, PixelToLatLon pixel_to_lat_lon)
+    : options_(std::move(options)), pixel_to_lat_lon_(std::move(pixel_to_lat_lon)) {
   std::error_code ec;
   std::filesystem::create_directories(options_.directory, ec);
   if (ec) throw InputError("cannot create output folder '" + options_.directory + "': " + ec.message());
@@ -38,6 +39,7 @@ ResultFilesWriter::ResultFilesWriter(ResultFilesOptions options) : options_(std:
   homographies_ = open("homographies.txt");
   tracks_obb_ << "frame,id,state,cx,cy,width,length,angle_deg,vx,vy";
   if (options_.gsd_m > 0.0) tracks_obb_ << ",cx_m,cy_m,width_m,length_m,speed_mps,speed_kmh";
+  if (pixel_to_lat_lon_) tracks_obb_ << ",lat,lon";
   tracks_obb_ << "\n";
   if (options_.write_features) {
     features_ = open("features.csv");
@@ -107,6 +109,11 @@ void ResultFilesWriter::write_tracks(const TrackList& tracks) {
       tracks_obb_ << fmt::format(",{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.2f}", t.box.cx * g, t.box.cy * g,
                                  t.box.width * g, t.box.length * g, speed_mps, speed_mps * 3.6);
     }
+    if (pixel_to_lat_lon_) {
+      // 7 decimals of a degree: about 1 cm, as in tracks.geojson; empty where the frame has no mapping.
+      const auto ground = pixel_to_lat_lon_(tracks.frame_index, t.box.cx, t.box.cy);
+      tracks_obb_ << (ground ? fmt::format(",{:.7f},{:.7f}", (*ground)[0], (*ground)[1]) : std::string(",,"));
+    }
     tracks_obb_ << "\n";
   }
 }
@@ -128,6 +135,13 @@ void ResultFilesWriter::close(RunSummary summary) {
   j["wall_time_s"] = summary.wall_time_s;
   j["fps"] = summary.wall_time_s > 0.0 ? static_cast<double>(summary.frames) / summary.wall_time_s : 0.0;
   j["gsd_m"] = options_.gsd_m;
+  if (!summary.gsd_source.empty()) j["gsd_source"] = summary.gsd_source;
+  if (summary.metadata) {
+    j["metadata"] = {{"packets", summary.metadata->packets},
+                     {"standard", summary.metadata->standard},
+                     {"bad_checksums", summary.metadata->bad_checksums},
+                     {"frames_with_geometry", summary.metadata->frames_with_geometry}};
+  }
   if (!summary.stage_mean_ms.empty()) j["stage_mean_ms"] = summary.stage_mean_ms;
   std::ofstream out = open("summary.json");
   out << j.dump(2) << "\n";

@@ -49,6 +49,38 @@ TEST(ResultFiles, WritesMotChallengeTracksOfConfirmedTracksOnly) {
   EXPECT_NE(read_all(dir / "summary.json").find("\"confirmed_tracks\": 1"), std::string::npos);
 }
 
+// With the input's ground geometry, tracks_obb.csv gets each box centre's lat,lon (empty where the
+// frame has no mapping), and summary.json says where the GSD came from and what metadata was read.
+TEST(ResultFiles, LatLonColumnsAndMetadataSummary) {
+  const auto dir = std::filesystem::temp_directory_path() / "uavmot_result_files_latlon_test";
+  std::filesystem::remove_all(dir);
+  {
+    ResultFilesOptions options{dir.string(), 25.0, 0.0, false, false};
+    ResultFilesWriter writer(options, [](int64_t frame, double x, double y) -> std::optional<std::array<double, 2>> {
+      if (frame != 1) return std::nullopt;
+      return std::array<double, 2>{38.0 + y * 1e-6, -77.0 + x * 1e-6};
+    });
+    Track t;
+    t.id = 3;
+    t.state = TrackState::Confirmed;
+    t.box = {100, 50, 2, 10, 90};
+    for (int64_t frame : {1, 2}) writer.write_tracks({"uav1", frame, 0, {t}});
+    RunSummary summary;
+    summary.gsd_source = "klv";
+    summary.metadata = MetadataSummary{48, "EG 0104", 0, 48};
+    writer.close(summary);
+  }
+  const std::string obb = read_all(dir / "tracks_obb.csv");
+  EXPECT_EQ(obb,
+            "frame,id,state,cx,cy,width,length,angle_deg,vx,vy,lat,lon\n"
+            "1,3,confirmed,100.000,50.000,2.000,10.000,90.000,0.0000,0.0000,38.0000500,-76.9999000\n"
+            "2,3,confirmed,100.000,50.000,2.000,10.000,90.000,0.0000,0.0000,,\n");
+  const std::string summary = read_all(dir / "summary.json");
+  EXPECT_NE(summary.find("\"gsd_source\": \"klv\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"standard\": \"EG 0104\""), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"frames_with_geometry\": 48"), std::string::npos) << summary;
+}
+
 TEST(ResultFiles, UnwritableFolderIsAnInputError) {
   EXPECT_THROW(ResultFilesWriter({"/proc/uavmot-cannot-write-here", 25.0, 0.0, true, true}), InputError);
 }

@@ -121,6 +121,15 @@ FlightMetadata flight_metadata_from_stream(const MpegTsKlv& stream, cv::Size ima
   return out;
 }
 
+std::string metadata_standard(const FlightMetadata& flight) {
+  bool st0601 = false, eg0104 = false;
+  for (const TimedMetadata& p : flight.packets) {
+    (p.metadata.standard == MetadataStandard::kEg0104 ? eg0104 : st0601) = true;
+  }
+  if (st0601 && eg0104) return "ST 0601 + EG 0104";
+  return st0601 ? "ST 0601" : eg0104 ? "EG 0104" : "";
+}
+
 FlightMetadata read_flight_metadata(const std::filesystem::path& path, cv::Size image_size, double fps, int frame_count) {
   const std::string ext = lower_extension(path);
   const bool ts_extension = ext == ".ts" || ext == ".m2t" || ext == ".mpg" || ext == ".mpeg";

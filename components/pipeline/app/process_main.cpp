@@ -1,6 +1,7 @@
 // uavmot-process: the whole chain in one process, no DDS. Reads a video, image folder or
 // MOTChallenge sequence and writes tracks.txt, tracks_obb.csv, homographies.txt, features.csv,
-// clusters.txt, regions.txt and summary.json. Given a recording (REC.mcap or --from-recording),
+// clusters.txt, regions.txt and summary.json; with flight metadata (KLV in MPEG-TS) also
+// tracks.geojson and lat,lon columns (docs/geo.md). Given a recording (REC.mcap or --from-recording),
 // re-runs only tracking on its motion estimates and segmentation results.
 
 #include <chrono>
@@ -13,12 +14,16 @@
 #include "uavmot/core/error.hpp"
 #include "uavmot/core/logging.hpp"
 #include "uavmot/core/result_files.hpp"
+#include "uavmot/core/scene_info.hpp"
 #include "uavmot/core/shutdown.hpp"
+#include "uavmot/geo/chain_ground.hpp"
+#include "uavmot/geo/track_map.hpp"
 #include "uavmot/pipeline/chain.hpp"
 #include "uavmot/pipeline/progress.hpp"
 #include "uavmot/source/frame_source.hpp"
 #include "uavmot/view/overlay.hpp"
 #include "uavmot/view/video_sink.hpp"
+#include "input_scene.hpp"
 #include "process_recording.hpp"
 
 namespace uavmot {
@@ -39,9 +44,9 @@ int process_main(int argc, char** argv) {
     app.add_option("--config", config_file, "chain configuration YAML (sections scene, motion, segmentation, tracking)");
     app.add_option("--segmentation", method, "clustering, korn, morphological, lbp or fusion (default from config: fusion)")
         ->check(CLI::IsMember({"clustering", "korn", "morphological", "lbp", "fusion"}));
-    app.add_option("--gsd", gsd_m, "ground sampling distance, m/px (default: seqinfo.ini gsd, else config, else 0.35)")
+    app.add_option("--gsd", gsd_m, "ground sampling distance, m/px (default: seqinfo.ini gsd, else KLV metadata, else config, else 0.35)")
         ->check(CLI::PositiveNumber);
-    app.add_option("--fps", fps, "frame rate (default: the input's)")->check(CLI::PositiveNumber);
+    app.add_option("--fps", fps, "frame rate (default: the input's; a CLIF folder's from its ../pos GPS times)")->check(CLI::PositiveNumber);
     app.add_option("--start", input.start_frame, "first input frame (1-based)")->check(CLI::PositiveNumber);
     app.add_option("--count", input.max_frames, "number of frames (0 = all)")->check(CLI::NonNegativeNumber);
     app.add_option("--stream-id", input.stream_id, "stream id written into every result")->capture_default_str();
@@ -59,22 +64,43 @@ int process_main(int argc, char** argv) {
         if (fps > 0) options.scene.fps = fps;
         return pipeline::process_recording(input.path, out_dir, options);
       }
+      // A CLIF folder's frame rate is in its POS records' GPS times, not in the images.
+      const auto clif_pos = pipeline::read_clif_pos_for(input.path);
+      if (fps <= 0 && clif_pos && clif_pos->fps()) input.fps_override = *clif_pos->fps();
       auto frames = source::open_frame_source(input);
       const auto& info = frames->info();
-      if (gsd_m > 0) options.scene.gsd_m = gsd_m;
-      else if (info.gsd_m > 0) options.scene.gsd_m = info.gsd_m;
-      else if (config_file.empty()) spdlog::warn("no GSD known: assuming {} m/px (pass --gsd)", options.scene.gsd_m);
       options.scene.fps = fps > 0 ? fps : info.fps;
-      spdlog::info("{} '{}': {}x{}, {} frames at {:.2f} fps; GSD {} m/px; segmentation {}", info.kind, input.path,
+      if (input.fps_override > 0) spdlog::info("frame rate {:.3f} fps from the CLIF POS GPS times", info.fps);
+      // The flight metadata of an MPEG-TS: geometry per frame, numbered as the chain numbers them.
+      const int input_frames = info.frame_count > 0 ? static_cast<int>(info.frame_count + input.start_frame - 1) : 0;
+      const geo::ChainGround ground(geo::read_flight_metadata(input.path, info.size, options.scene.fps, input_frames), input.start_frame);
+      if (!ground.flight().empty()) {
+        const auto& m = ground.flight().summary;
+        spdlog::info("KLV metadata: {} packets ({}), {} bad checksums, {} undecodable; {} of {} frames have ground geometry",
+                     m.packets, geo::metadata_standard(ground.flight()), m.bad_checksum, m.undecodable, m.frames_with_geometry,
+                     ground.flight().frames.size());
+      }
+      pipeline::GsdCandidates gsd;
+      gsd.flag_m = gsd_m;
+      gsd.seqinfo_m = info.gsd_m;
+      gsd.flight = &ground.flight();
+      gsd.klv_m = ground.median_gsd_m(info.frame_count);
+      gsd.config_m = pipeline::config_gsd_m(config_file, options.scene.gsd_m);
+      gsd.default_m = SceneInfo{}.gsd_m;
+      gsd.clif_pos = clif_pos.has_value();
+      const pipeline::GsdChoice gsd_choice = pipeline::choose_gsd(gsd);
+      options.scene.gsd_m = gsd_choice.gsd_m;
+      spdlog::info("{} '{}': {}x{}, {} frames at {:.2f} fps; GSD {:.4g} m/px ({}); segmentation {}", info.kind, input.path,
                    info.size.width, info.size.height, info.frame_count, options.scene.fps, options.scene.gsd_m,
-                   to_string(options.segmentation.method));
+                   gsd_choice.source, to_string(options.segmentation.method));
 
       pipeline::Chain chain(options);
       ResultFilesOptions files;
       files.directory = out_dir;
       files.fps = options.scene.fps;
       files.gsd_m = options.scene.gsd_m;
-      ResultFilesWriter writer(files);
+      geo::TrackMapRecorder track_map;
+      ResultFilesWriter writer(files, ground.has_ground_mapping() ? ground.pixel_to_lat_lon() : PixelToLatLon{});
       std::unique_ptr<view::VideoSink> video;
       view::OverlayOptions overlay;
       overlay.gsd_m = options.scene.gsd_m;
@@ -91,6 +117,7 @@ int process_main(int argc, char** argv) {
           writer.write_motion(out.motion);
           writer.write_segmentation(out.segmentation);
           writer.write_tracks(out.tracks);
+          track_map.add(out.tracks);
           if (video) video->write(view::draw_overlay(frame.image, &out.motion, &out.segmentation, &out.tracks, overlay));
           progress.update(++done);
         }
@@ -109,7 +136,14 @@ int process_main(int argc, char** argv) {
       summary.stage_mean_ms = {{"motion", times.motion_s * per_frame_ms},
                                {"segmentation", times.segmentation_s * per_frame_ms},
                                {"tracking", times.tracking_s * per_frame_ms}};
+      summary.gsd_source = gsd_choice.source;
+      if (!ground.flight().empty()) summary.metadata = ground.summary();
       writer.close(summary);
+      if (ground.has_ground_mapping()) {
+        const auto counts = ground.write_geojson(std::filesystem::path(out_dir) / "tracks.geojson", track_map, options.scene.fps);
+        spdlog::info("tracks.geojson: {} tracks on the map ({} points without ground geometry, {} tracks with fewer than two points left out)",
+                     counts.features, counts.skipped_points, counts.skipped_tracks);
+      }
       if (video) video->close();
       spdlog::info("{} frames in {:.1f} s ({:.1f} fps) -> {}; per frame: motion {:.1f} ms, segmentation {:.1f} ms, tracking {:.1f} ms",
                    done, summary.wall_time_s, done / std::max(summary.wall_time_s, 1e-9), out_dir,

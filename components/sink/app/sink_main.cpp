@@ -4,12 +4,15 @@
 // With --downlink it reads what crosses an air -> ground link instead: uavmot/downlink/results,
 // one compact sample per frame (no features or clusters; exact, docs/deployment.md), and
 // with --preview-dir it also saves the link's JPEG previews (uavmot/downlink/preview) there.
-// With several streams, each gets a folder of its own under --out.
+// With several streams, each gets a folder of its own under --out. With --metadata VIDEO (the
+// source's input, an MPEG-TS with KLV) it also writes tracks.geojson and lat,lon columns, as
+// `uavmot process` does (docs/geo.md).
 
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 
 #include <fmt/format.h>
@@ -29,6 +32,9 @@
 #include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/dds/node_support.hpp"
+#include "uavmot/geo/chain_ground.hpp"
+#include "uavmot/geo/track_map.hpp"
+#include "uavmot/source/frame_source.hpp"
 
 namespace uavmot {
 namespace {
@@ -39,6 +45,9 @@ struct SinkOptions {
   int streams = 1;
   bool downlink = false;
   std::string preview_dir;  // downlink: save the JPEG previews here
+  std::string metadata;     // the source's input video, for its flight metadata
+  std::string gsd_source;   // summary.json: flag, klv, or empty (no GSD)
+  const geo::ChainGround* ground = nullptr;  // with --metadata: the ground under each frame
 };
 
 // Saves every JPEG preview that arrives as PREVIEW_DIR/STREAM_FRAME.jpg.
@@ -84,25 +93,40 @@ class ResultFolders {
       r.gsd_m = o_.gsd_m;
       // The downlink carries neither features nor clusters: no empty files pretending otherwise.
       r.write_features = r.write_clusters = !o_.downlink;
-      it->second = std::make_unique<ResultFilesWriter>(r);
+      it->second = std::make_unique<ResultFilesWriter>(
+          r, o_.ground && o_.ground->has_ground_mapping() ? o_.ground->pixel_to_lat_lon() : PixelToLatLon{});
       spdlog::info("stream '{}' -> {}", stream, r.directory);
     }
     return *it->second;
+  }
+  // Every result file of a stream gets its tracks; with ground geometry the map keeps them too.
+  void write_tracks(const std::string& stream, const TrackList& tracks) {
+    of(stream).write_tracks(tracks);
+    if (o_.ground) track_maps_[stream].add(tracks);
   }
   void close(double seconds) {
     for (auto& [id, writer] : writers_) {
       RunSummary summary;
       summary.input = "dds:" + id;
       summary.wall_time_s = seconds;
+      summary.gsd_source = o_.gsd_source;
+      if (o_.ground && !o_.ground->flight().empty()) summary.metadata = o_.ground->summary();
       const int64_t frames = writer->frames_written();
       writer->close(summary);
       spdlog::info("stream '{}': {} frames written", id, frames);
+      if (o_.ground && o_.ground->has_ground_mapping()) {
+        const auto path = std::filesystem::path(writer->options().directory) / "tracks.geojson";
+        const auto counts = o_.ground->write_geojson(path, track_maps_[id], o_.fps);
+        spdlog::info("stream '{}': tracks.geojson with {} tracks ({} points without ground geometry)", id, counts.features,
+                     counts.skipped_points);
+      }
     }
   }
 
  private:
   const SinkOptions& o_;
   std::map<std::string, std::unique_ptr<ResultFilesWriter>> writers_;
+  std::map<std::string, geo::TrackMapRecorder> track_maps_;
 };
 
 // Runs `drain` (true when it took anything) until `finished`, the idle timeout or shutdown.
@@ -178,8 +202,8 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
   sink_loop(o, health, [&] {
     bool any = drain(motion, [&](ResultFilesWriter& f, const MotionEstimate& m) { f.write_motion(m); health.frame_in(); });
     any |= drain(segmentation, [](ResultFilesWriter& f, const SegmentationResult& s) { f.write_segmentation(s); });
-    any |= drain(tracks, [&](ResultFilesWriter& f, const TrackList& t) {
-      f.write_tracks(t);
+    any |= drain(tracks, [&](ResultFilesWriter&, const TrackList& t) {
+      folders.write_tracks(t.stream_id, t);
       health.frame_out(t.frame_index, 0.0, dds::latency_ms_since(t.capture_time_ns));
     });
     return any;
@@ -236,7 +260,7 @@ int run_downlink_sink(dds::Participant& participant, const SinkOptions& o) {
         health.frame_in();
       }
       if (parts->regions) files.write_printed_regions(sample.frame_index(), *parts->regions);
-      if (parts->tracks) files.write_tracks(*parts->tracks);
+      if (parts->tracks) folders.write_tracks(stream, *parts->tracks);
       health.frame_out(sample.frame_index(), 0.0, dds::latency_ms_since(sample.capture_time_ns()));
     }
     if (preview) any |= preview->pump();
@@ -251,22 +275,59 @@ int run_downlink_sink(dds::Participant& participant, const SinkOptions& o) {
   return finished() ? kExitOk : kExitFailure;
 }
 
+// The flight metadata of the source's input, read here rather than sent over DDS: the frame
+// size and rate come from the video itself, as in `uavmot process`.
+geo::ChainGround read_ground(SinkOptions& o, bool fps_given) {
+  auto video = source::open_frame_source({.path = o.metadata});
+  const source::SourceInfo& info = video->info();
+  if (!fps_given) o.fps = info.fps;
+  geo::ChainGround ground(geo::read_flight_metadata(o.metadata, info.size, o.fps, static_cast<int>(info.frame_count)));
+  if (ground.flight().empty()) {
+    spdlog::warn("--metadata '{}': no KLV metadata; no tracks.geojson", o.metadata);
+    return ground;
+  }
+  const auto& m = ground.flight().summary;
+  spdlog::info("KLV metadata of '{}': {} packets ({}), {} of {} frames have ground geometry; {}x{} at {:.3f} fps", o.metadata,
+               m.packets, geo::metadata_standard(ground.flight()), m.frames_with_geometry, ground.flight().frames.size(),
+               info.size.width, info.size.height, o.fps);
+  const auto klv_gsd = ground.median_gsd_m(info.frame_count);
+  if (o.gsd_m <= 0 && klv_gsd) {
+    o.gsd_m = *klv_gsd;
+    o.gsd_source = "klv";
+    spdlog::info("GSD {:.3f} m/px from KLV metadata ({} packets, {})", o.gsd_m, m.packets, geo::metadata_standard(ground.flight()));
+  }
+  return ground;
+}
+
 int sink_main(int argc, char** argv) {
   dds::NodeOptions node;
   SinkOptions o;
   return run_app(argc, argv, "sink", "write the chain's results to files (motion, segmentation, tracks -> tracks.txt ...)", [&](CLI::App& app) {
     app.add_option("--out", o.out_dir, "output folder (one sub-folder per stream when --streams > 1)")->required();
     app.add_option("--gsd", o.gsd_m, "ground sampling distance, m/px: adds metric columns")->check(CLI::PositiveNumber);
-    app.add_option("--fps", o.fps, "frame rate, for speeds")->check(CLI::PositiveNumber)->capture_default_str();
+    auto* fps_option = app.add_option("--fps", o.fps, "frame rate, for speeds (with --metadata: default the video's)")
+                           ->check(CLI::PositiveNumber)
+                           ->capture_default_str();
     app.add_option("--streams", o.streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
     app.add_option("--idle-timeout", o.idle_timeout_s, "fail if nothing arrives for this long once started (s, 0 = wait forever)");
     app.add_flag("--downlink", o.downlink,
                  "read uavmot/downlink/results, what an air -> ground link carries (no features.csv, clusters.txt)");
     app.add_option("--preview-dir", o.preview_dir, "with --downlink: save the link's JPEG previews here");
+    app.add_option("--metadata", o.metadata,
+                   "the source's input video (MPEG-TS with KLV, from its first frame): adds tracks.geojson, lat,lon columns and "
+                   "its GSD when --gsd is not given");
     dds::add_node_options(app, node);
-    return [&]() -> int {
+    // fps_option by value: it is a local of this set-up function, which returns before the run.
+    return [&, fps_option]() -> int {
       dds::finalize(node, "sink");
       if (!o.preview_dir.empty() && !o.downlink) throw InputError("--preview-dir needs --downlink");
+      if (o.gsd_m > 0) o.gsd_source = "flag";
+      std::optional<geo::ChainGround> ground;
+      if (!o.metadata.empty()) {
+        if (o.streams != 1) throw InputError("--metadata describes one stream; it cannot be used with --streams " + std::to_string(o.streams));
+        ground = read_ground(o, fps_option->count() > 0);
+        o.ground = &*ground;
+      }
       install_shutdown_handler();
       dds::Participant participant(node.dds);
       return o.downlink ? run_downlink_sink(participant, o) : run_chain_sink(participant, o);

@@ -5,6 +5,7 @@
 //
 //   tracks.txt       frame,id,bb_left,bb_top,bb_width,bb_height,conf,-1,-1,-1 (confirmed tracks)
 //   tracks_obb.csv   frame,id,state,cx,cy,width,length,angle_deg,vx,vy[,metric columns with a GSD]
+//                    [,lat,lon with the input's ground geometry]
 //   homographies.txt frame,h11..h33 (frame k-1 -> k, h33 = 1; frame 1 is the identity)
 //   features.csv     frame,feature_id,x,y,vx,vy,moving
 //   clusters.txt     MOTChallenge boxes with id -1
@@ -12,8 +13,11 @@
 //   summary.json     counts and timing
 
 #include <cstdint>
+#include <array>
 #include <fstream>
+#include <functional>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -22,6 +26,11 @@
 #include "uavmot/core/error.hpp"
 
 namespace uavmot {
+
+// The ground position (latitude, longitude in degrees) of an image point of a frame, or nullopt
+// where the frame has no ground mapping. The writer stays free of the geo library: the caller
+// (uavmot process, the sink) passes the mapping of the input's flight metadata.
+using PixelToLatLon = std::function<std::optional<std::array<double, 2>>(int64_t frame, double x, double y)>;
 
 struct ResultFilesOptions {
   std::string directory;
@@ -32,6 +41,14 @@ struct ResultFilesOptions {
   bool write_clusters = true;  // with write_segmentation; off where clusters are not known (the downlink)
 };
 
+// What the input's flight metadata held, for summary.json (docs/geo.md).
+struct MetadataSummary {
+  int64_t packets = 0;
+  std::string standard;  // "EG 0104", "ST 0601" or "ST 0601 + EG 0104"
+  int64_t bad_checksums = 0;
+  int64_t frames_with_geometry = 0;
+};
+
 struct RunSummary {
   int64_t frames = 0;
   int64_t valid_homographies = 0;
@@ -39,6 +56,8 @@ struct RunSummary {
   double wall_time_s = 0.0;
   std::string input;
   std::map<std::string, double> stage_mean_ms;  // per layer, when known (uavmot process)
+  std::string gsd_source;  // where gsd_m came from: flag, seqinfo, config, klv, clif_pos, default
+  std::optional<MetadataSummary> metadata;
 };
 
 // A line of regions.txt as printed (printed_fixed with 3 decimals): axis-aligned bounds and
@@ -50,7 +69,9 @@ PrintedRegion printed_region(const Region& region);  // throws InvalidArgument f
 
 class ResultFilesWriter {
  public:
-  explicit ResultFilesWriter(ResultFilesOptions options);  // throws InputError if the folder cannot be written
+  // throws InputError if the folder cannot be written. With pixel_to_lat_lon, tracks_obb.csv gets
+  // the lat,lon of each box centre.
+  explicit ResultFilesWriter(ResultFilesOptions options, PixelToLatLon pixel_to_lat_lon = {});
   ~ResultFilesWriter();
   ResultFilesWriter(const ResultFilesWriter&) = delete;
   ResultFilesWriter& operator=(const ResultFilesWriter&) = delete;
@@ -70,6 +91,7 @@ class ResultFilesWriter {
   std::ofstream open(const std::string& name);
 
   ResultFilesOptions options_;
+  PixelToLatLon pixel_to_lat_lon_;
   std::ofstream tracks_;
   std::ofstream tracks_obb_;
   std::ofstream homographies_;

@@ -10,6 +10,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include <opencv2/core/types.hpp>
@@ -59,6 +60,10 @@ struct FlightMetadata {
 // result, not an error. Throws InputError when the file cannot be read or a .ts holds no transport stream, and
 // InvalidArgument when fps or the image size is not positive.
 FlightMetadata read_flight_metadata(const std::filesystem::path& path, cv::Size image_size, double fps, int frame_count = 0);
+
+// The metadata sets the packets came in: "EG 0104", "ST 0601", "ST 0601 + EG 0104", or "" without
+// packets (for logs and summary.json).
+std::string metadata_standard(const FlightMetadata& flight);
 
 // The same from an already parsed stream (tests, callers with the bytes in memory).
 FlightMetadata flight_metadata_from_stream(const MpegTsKlv& stream, cv::Size image_size, double fps, int frame_count = 0);
