@@ -19,8 +19,10 @@ int detection_cell_size(const MotionOptions& options, cv::Size size);
 
 // New corners in `gray` (CV_8UC1): at least min_distance_px from every point of `existing` and
 // from each other, at most features_per_cell per cell counting `existing`, no more than
-// max_features in total, above min_corner_response. Deterministic order: cells row-major,
-// strongest corner first within a cell.
+// max_features in total, above min_corner_response. Deterministic order: when the budget cannot
+// serve every cell that lacks features, the cells whose 3x3 neighbourhood holds the fewest features
+// first (ties row-major), so the budget goes where the image is least covered; strongest corner
+// first within a cell.
 std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
                                                 const MotionOptions& options);
 
