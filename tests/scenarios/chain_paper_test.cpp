@@ -1,13 +1,15 @@
-// The whole chain as a user runs it: `uavmot sim --preset paper --seed 1`, `uavmot process` with
-// the default configuration, scored by `uavmot eval` (paper Tables I/II, TrackEval). Issue 6's
-// targets are asserted as it states them: 95 % correct (95.2 % on this seed), no under- or
-// over-segmentation, position within 1.5 px, width 2 px, length 3 px, nothing on a parked car.
-// False alarms and MOTA are held at the level reached (docs/tracking.md, "End to end on every
-// preset"), with a small margin, so a change that costs accuracy fails here.
+// The whole chain as a user runs it: `uavmot sim --preset paper --seed N`, `uavmot process` with
+// the default configuration, scored by `uavmot eval` (paper Tables I/II, TrackEval), on three seeds
+// (one seed is what the chain was once tuned on; docs/tracking.md, "Validation protocol"). The
+// figures are held at the level the seeds 1-3 reach (mean, and the worst seed for the correct
+// rate), with a small margin, so a change that costs accuracy on any of them fails here. Issue 18's
+// targets (>= 95 % correct on every seed) are not met yet; docs/tracking.md lists the gap.
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cstdio>
 #include <fstream>
 
 #include <nlohmann/json.hpp>
@@ -29,35 +31,60 @@ int run(const std::vector<std::string>& argv, const std::string& log) {
   return code.value_or(-1);
 }
 
-TEST(ChainPaperScenario, TracksMeetThePrecisionTargetsAndStayOffParkedCars) {
-  const std::string dir = fresh_dir("chain_paper_scenario");
+nlohmann::json score_seed(int seed) {
+  const std::string dir = fresh_dir("chain_paper_scenario_seed" + std::to_string(seed));
   const std::string seq = dir + "/paper", out = dir + "/out";
-  ASSERT_EQ(run({binary("uavmot"), "sim", "--preset", "paper", "--seed", "1", "--out", seq, "--quiet"}, dir + "/sim.log"), 0);
-  ASSERT_EQ(run({binary("uavmot"), "process", seq, "--out", out, "--quiet"}, dir + "/process.log"), 0);
-  ASSERT_EQ(run({binary("uavmot"), "eval", "--seq", seq, "--pred", out + "/tracks.txt", "--obb", out + "/tracks_obb.csv",
+  EXPECT_EQ(run({binary("uavmot"), "sim", "--preset", "paper", "--seed", std::to_string(seed), "--out", seq, "--quiet"}, dir + "/sim.log"), 0);
+  EXPECT_EQ(run({binary("uavmot"), "process", seq, "--out", out, "--quiet"}, dir + "/process.log"), 0);
+  EXPECT_EQ(run({binary("uavmot"), "eval", "--seq", seq, "--pred", out + "/tracks.txt", "--obb", out + "/tracks_obb.csv",
                  "--json", out + "/eval.json"},
                 dir + "/eval.log"),
             0);
   std::ifstream in(out + "/eval.json");
-  const auto e = nlohmann::json::parse(in);
-  const auto& c = e.at("completeness");
-  const auto& p = e.at("precision");
-  const auto& f = e.at("false_alarms");
-  ASSERT_GT(c.at("instances").get<int>(), 10000);
-  EXPECT_GE(c.at("correct_rate").get<double>(), 0.95);
-  EXPECT_EQ(c.at("under_segmented").get<int>(), 0);
-  EXPECT_EQ(c.at("over_segmented").get<int>(), 0);
-  EXPECT_LE(p.at("error_x_px").get<double>(), 1.5);
-  EXPECT_LE(p.at("error_y_px").get<double>(), 1.5);
-  EXPECT_LE(p.at("error_width_px").get<double>(), 2.0);
-  EXPECT_LE(p.at("error_length_px").get<double>(), 3.0);
-  EXPECT_EQ(f.at("on_parked").get<int>(), 0);
-  EXPECT_LE(f.at("per_frame").get<double>(), 3.0);
-  for (const auto& t : e.at("tracking")) {
-    if (t.at("iou_threshold").get<double>() < 0.4) {
-      EXPECT_GE(t.at("MOTA").get<double>(), 0.905);  // IoU 0.3, the small-object threshold
+  return nlohmann::json::parse(in);
+}
+
+TEST(ChainPaperScenario, ThreeSeedsHoldTheirCorrectRatePrecisionAndFalseAlarms) {
+  const std::vector<int> seeds = {1, 2, 3};
+  double correct = 0, worst_correct = 1, over = 0, ex = 0, ey = 0, ew = 0, el = 0, fa = 0, mota = 0;
+  int under = 0;
+  for (const int seed : seeds) {
+    const auto e = score_seed(seed);
+    const auto& c = e.at("completeness");
+    const auto& p = e.at("precision");
+    const auto& f = e.at("false_alarms");
+    ASSERT_GT(c.at("instances").get<int>(), 10000) << "seed " << seed;
+    const double rate = c.at("correct_rate").get<double>();
+    std::printf("paper seed %d: correct %.2f %%, over %.2f %%, under %d, e_x %.2f e_y %.2f e_w %.2f e_l %.2f px, "
+                "false alarms %.2f / frame (%d on parked)\n",
+                seed, 100 * rate, 100 * c.at("over_segmented_rate").get<double>(), c.at("under_segmented").get<int>(),
+                p.at("error_x_px").get<double>(), p.at("error_y_px").get<double>(), p.at("error_width_px").get<double>(),
+                p.at("error_length_px").get<double>(), f.at("per_frame").get<double>(), f.at("on_parked").get<int>());
+    correct += rate / seeds.size();
+    worst_correct = std::min(worst_correct, rate);
+    over += c.at("over_segmented_rate").get<double>() / seeds.size();
+    under += c.at("under_segmented").get<int>();
+    ex += p.at("error_x_px").get<double>() / seeds.size();
+    ey += p.at("error_y_px").get<double>() / seeds.size();
+    ew += p.at("error_width_px").get<double>() / seeds.size();
+    el += p.at("error_length_px").get<double>() / seeds.size();
+    fa += f.at("per_frame").get<double>() / seeds.size();
+    for (const auto& t : e.at("tracking")) {
+      if (t.at("iou_threshold").get<double>() < 0.4) mota += t.at("MOTA").get<double>() / seeds.size();  // IoU 0.3
     }
   }
+  // Seeds 1-3 on 2026-11-25 (tools/validate.sh --tuning --frames 250 paper): correct 95.27 / 89.95 / 92.41 %, over 0 / 69 / 0 instances,
+  // under 0, false alarms 3.05 / 2.44 / 1.93 per frame, MOTA@0.3 0.912 / 0.848 / 0.911.
+  EXPECT_GE(correct, 0.92);
+  EXPECT_GE(worst_correct, 0.89);
+  EXPECT_EQ(under, 0);
+  EXPECT_LE(over, 0.005);
+  EXPECT_LE(ex, 1.5);
+  EXPECT_LE(ey, 1.5);
+  EXPECT_LE(ew, 2.1);
+  EXPECT_LE(el, 2.9);
+  EXPECT_LE(fa, 2.8);
+  EXPECT_GE(mota, 0.88);
 }
 
 }  // namespace
