@@ -388,9 +388,10 @@ int sink_main(int argc, char** argv) {
     auto* fps_option = app.add_option("--fps", o.fps, "frame rate, for speeds (with --metadata: default the video's)")
                            ->check(CLI::PositiveNumber)
                            ->capture_default_str();
-    auto* streams_option = app.add_option("--streams", o.streams, "write up to this many streams (the first valid ids that arrive); exit after they ended")
-                               ->check(CLI::PositiveNumber)
-                               ->capture_default_str();
+    auto* streams_option =
+        app.add_option("--streams", o.streams, "write up to this many streams (the first valid ids that arrive); exit after they ended")
+            ->check(CLI::PositiveNumber)
+            ->capture_default_str();
     app.add_option("--stream-id", o.stream_ids,
                    "write only this stream id (repeat for several; sets --streams); default: the first ids that arrive")
         ->check([](const std::string& id) { return stream_id_problem(id); });
