@@ -25,13 +25,25 @@ stage() {  # name command...
 }
 
 tests() {
-  local build_dir=${UAVMOT_BUILD_DIR:-build}
+  local build_dir=${UAVMOT_BUILD_DIR:-build} failed=0
+  # Each gtest binary writes its report here (what it skipped, and why), ctest its own beside it:
+  # tools/check_skips.py fails the stage for a skip tools/expected_skips.txt does not list.
+  local reports
+  reports=$(realpath -m "$build_dir/test_reports")
+  rm -rf "$reports"
+  mkdir -p "$reports/gtest"
+  export GTEST_OUTPUT="xml:$reports/gtest/"
   # Integration tests start real Fast DDS processes; run them one at a time so they
-  # do not compete for the two cores and shared-memory segments.
-  ctest --test-dir "$build_dir" --output-on-failure -j 2 -LE serial
+  # do not compete for the two cores and shared-memory segments. Every test runs before the stage
+  # fails, also when the first half failed.
+  ctest --test-dir "$build_dir" --output-on-failure -j 2 -LE serial --output-junit "$reports/ctest_parallel.xml" || failed=1
   # Shared-memory segments left by killed Fast DDS processes of earlier runs on this machine.
   fastdds shm clean >/dev/null 2>&1 || true
-  ctest --test-dir "$build_dir" --output-on-failure -L serial
+  ctest --test-dir "$build_dir" --output-on-failure -L serial --output-junit "$reports/ctest_serial.xml" || failed=1
+  unset GTEST_OUTPUT
+  python3 tools/check_skips.py tools/expected_skips.txt "$reports/gtest" "$reports/ctest_parallel.xml" \
+    "$reports/ctest_serial.xml" || failed=1
+  return "$failed"
 }
 
 stage deps bash tools/install_deps.sh

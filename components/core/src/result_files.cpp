@@ -37,13 +37,13 @@ ResultFilesWriter::ResultFilesWriter(ResultFilesOptions options, PixelToLatLon p
   tracks_ = open("tracks.txt");
   tracks_obb_ = open("tracks_obb.csv");
   homographies_ = open("homographies.txt");
-  tracks_obb_ << "frame,id,state,cx,cy,width,length,angle_deg,vx,vy";
-  if (options_.gsd_m > 0.0) tracks_obb_ << ",cx_m,cy_m,width_m,length_m,speed_mps,speed_kmh";
-  if (pixel_to_lat_lon_) tracks_obb_ << ",lat,lon";
-  tracks_obb_ << "\n";
+  std::string header = "frame,id,state,cx,cy,width,length,angle_deg,vx,vy";
+  if (options_.gsd_m > 0.0) header += ",cx_m,cy_m,width_m,length_m,speed_mps,speed_kmh";
+  if (pixel_to_lat_lon_) header += ",lat,lon";
+  tracks_obb_.append(header + "\n");
   if (options_.write_features) {
     features_ = open("features.csv");
-    features_ << "frame,feature_id,x,y,vx,vy,moving\n";
+    features_.append("frame,feature_id,x,y,vx,vy,moving\n");
   }
   if (options_.write_segmentation) {
     if (options_.write_clusters) clusters_ = open("clusters.txt");
@@ -53,11 +53,8 @@ ResultFilesWriter::ResultFilesWriter(ResultFilesOptions options, PixelToLatLon p
 
 ResultFilesWriter::~ResultFilesWriter() = default;
 
-std::ofstream ResultFilesWriter::open(const std::string& name) {
-  const auto path = std::filesystem::path(options_.directory) / name;
-  std::ofstream out(path, std::ios::out | std::ios::trunc);
-  if (!out) throw InputError("cannot write '" + path.string() + "'");
-  return out;
+OutputFile ResultFilesWriter::open(const std::string& name) {
+  return OutputFile((std::filesystem::path(options_.directory) / name).string());
 }
 
 void ResultFilesWriter::write_motion(const MotionEstimate& motion) {
@@ -66,64 +63,75 @@ void ResultFilesWriter::write_motion(const MotionEstimate& motion) {
   if (motion.quality.valid) ++valid_homographies_;
   Homography h = motion.homography;
   if (!normalize_homography(h)) h = identity_homography();
-  homographies_ << motion.frame_index;
-  for (int i = 0; i < 9; ++i) homographies_ << fmt::format(",{:.10g}", h.val[i]);
-  homographies_ << "\n";
+  std::string line = std::to_string(motion.frame_index);
+  for (int i = 0; i < 9; ++i) line += fmt::format(",{:.10g}", h.val[i]);
+  homographies_.append(line + "\n");
   if (!options_.write_features) return;
+  std::string lines;
   for (const auto& f : motion.features) {
-    features_ << fmt::format("{},{},{:.3f},{:.3f},{:.4f},{:.4f},{}\n", motion.frame_index, f.id, f.position.x,
-                             f.position.y, f.velocity[0], f.velocity[1], f.moving ? 1 : 0);
+    lines += fmt::format("{},{},{:.3f},{:.3f},{:.4f},{:.4f},{}\n", motion.frame_index, f.id, f.position.x, f.position.y,
+                         f.velocity[0], f.velocity[1], f.moving ? 1 : 0);
   }
+  features_.append(lines);
 }
 
 void ResultFilesWriter::write_segmentation(const SegmentationResult& segmentation) {
   if (closed_) throw std::logic_error("ResultFilesWriter used after close()");
   if (!options_.write_segmentation) return;
-  for (const auto& c : segmentation.clusters) {
-    if (!options_.write_clusters) break;
-    clusters_ << mot_box_line(segmentation.frame_index, -1, axis_aligned_bounds(c.box),
-                              static_cast<double>(c.feature_ids.size()));
+  if (options_.write_clusters) {
+    std::string lines;
+    for (const auto& c : segmentation.clusters) {
+      lines += mot_box_line(segmentation.frame_index, -1, axis_aligned_bounds(c.box), static_cast<double>(c.feature_ids.size()));
+    }
+    clusters_.append(lines);
   }
-  for (const auto& r : segmentation.regions) regions_ << region_line(segmentation.frame_index, printed_region(r));
+  std::string lines;
+  for (const auto& r : segmentation.regions) lines += region_line(segmentation.frame_index, printed_region(r));
+  regions_.append(lines);
 }
 
 void ResultFilesWriter::write_printed_regions(int64_t frame_index, const std::vector<PrintedRegion>& regions) {
   if (closed_) throw std::logic_error("ResultFilesWriter used after close()");
   if (!options_.write_segmentation) return;
-  for (const auto& r : regions) regions_ << region_line(frame_index, r);
+  std::string lines;
+  for (const auto& r : regions) lines += region_line(frame_index, r);
+  regions_.append(lines);
 }
 
 void ResultFilesWriter::write_tracks(const TrackList& tracks) {
   if (closed_) throw std::logic_error("ResultFilesWriter used after close()");
+  std::string mot, obb;
+  std::set<uint64_t> confirmed;
   for (const auto& t : tracks.tracks) {
     if (t.state == TrackState::Confirmed) {
-      tracks_ << mot_box_line(tracks.frame_index, static_cast<int64_t>(t.id), axis_aligned_bounds(t.box), 1.0);
-      confirmed_ids_.insert(t.id);
+      mot += mot_box_line(tracks.frame_index, static_cast<int64_t>(t.id), axis_aligned_bounds(t.box), 1.0);
+      confirmed.insert(t.id);
     }
-    tracks_obb_ << fmt::format("{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.4f},{:.4f}", tracks.frame_index, t.id,
-                               to_string(t.state), t.box.cx, t.box.cy, t.box.width, t.box.length, t.box.angle_deg,
-                               t.velocity[0], t.velocity[1]);
+    obb += fmt::format("{},{},{},{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.4f},{:.4f}", tracks.frame_index, t.id,
+                       to_string(t.state), t.box.cx, t.box.cy, t.box.width, t.box.length, t.box.angle_deg, t.velocity[0],
+                       t.velocity[1]);
     if (options_.gsd_m > 0.0) {
       const double g = options_.gsd_m;
       const double speed_mps = std::hypot(t.velocity[0], t.velocity[1]) * g * options_.fps;
-      tracks_obb_ << fmt::format(",{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.2f}", t.box.cx * g, t.box.cy * g,
-                                 t.box.width * g, t.box.length * g, speed_mps, speed_mps * 3.6);
+      obb += fmt::format(",{:.3f},{:.3f},{:.3f},{:.3f},{:.3f},{:.2f}", t.box.cx * g, t.box.cy * g, t.box.width * g,
+                         t.box.length * g, speed_mps, speed_mps * 3.6);
     }
     if (pixel_to_lat_lon_) {
       // 7 decimals of a degree: about 1 cm, as in tracks.geojson; empty where the frame has no mapping.
       const auto ground = pixel_to_lat_lon_(tracks.frame_index, t.box.cx, t.box.cy);
-      tracks_obb_ << (ground ? fmt::format(",{:.7f},{:.7f}", (*ground)[0], (*ground)[1]) : std::string(",,"));
+      obb += (ground ? fmt::format(",{:.7f},{:.7f}", (*ground)[0], (*ground)[1]) : std::string(",,"));
     }
-    tracks_obb_ << "\n";
+    obb += "\n";
   }
+  tracks_.append(mot);
+  tracks_obb_.append(obb);
+  confirmed_ids_.merge(confirmed);  // counted once written
 }
 
 void ResultFilesWriter::close(RunSummary summary) {
   if (closed_) return;
   closed_ = true;
-  for (auto* s : {&tracks_, &tracks_obb_, &homographies_, &features_, &clusters_, &regions_}) {
-    if (s->is_open()) s->close();
-  }
+  for (auto* file : {&tracks_, &tracks_obb_, &homographies_, &features_, &clusters_, &regions_}) file->close();
   summary.frames = frames_;
   summary.valid_homographies = valid_homographies_;
   summary.tracks_confirmed = confirmed_ids_.size();
@@ -143,8 +151,7 @@ void ResultFilesWriter::close(RunSummary summary) {
                      {"frames_with_geometry", summary.metadata->frames_with_geometry}};
   }
   if (!summary.stage_mean_ms.empty()) j["stage_mean_ms"] = summary.stage_mean_ms;
-  std::ofstream out = open("summary.json");
-  out << j.dump(2) << "\n";
+  write_output_file((std::filesystem::path(options_.directory) / "summary.json").string(), j.dump(2) + "\n");
 }
 
 }  // namespace uavmot

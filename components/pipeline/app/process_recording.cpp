@@ -10,6 +10,7 @@
 
 #include "uavmot/core/app.hpp"
 #include "uavmot/core/result_files.hpp"
+#include "uavmot/core/stream_id.hpp"
 #include "uavmot/record/recorded_chain.hpp"
 #include "uavmot/tracking/tracker.hpp"
 
@@ -18,10 +19,14 @@ namespace uavmot::pipeline {
 int process_recording(const std::string& recording, const std::string& out_dir, ChainOptions options) {
   const auto start = std::chrono::steady_clock::now();
   // A first pass only lists the streams, so one stream writes into out_dir as `process` does.
-  std::set<std::string> stream_ids;
+  // Stream ids name folders: ids that are not a safe folder name are left out, with an error.
+  std::set<std::string> stream_ids, bad_ids;
   record::read_recorded_chain(recording, [&](const std::string& stream, const MotionEstimate&, const SegmentationResult&) {
-    stream_ids.insert(stream);
+    (is_valid_stream_id(stream) ? stream_ids : bad_ids).insert(stream);
   });
+  for (const auto& id : bad_ids) {
+    spdlog::error("{}: left out stream {}: {}", recording, printable_stream_id(id), stream_id_problem(id));
+  }
 
   struct Stream {
     std::unique_ptr<tracking::Tracker> tracker;
@@ -30,6 +35,7 @@ int process_recording(const std::string& recording, const std::string& out_dir, 
   std::map<std::string, Stream> streams;
   const auto counts = record::read_recorded_chain(
       recording, [&](const std::string& id, const MotionEstimate& motion, const SegmentationResult& segmentation) {
+        if (stream_ids.count(id) == 0) return;
         auto [it, fresh] = streams.try_emplace(id);
         Stream& s = it->second;
         if (fresh) {
@@ -62,6 +68,7 @@ int process_recording(const std::string& recording, const std::string& out_dir, 
     spdlog::error("{}", counts.damage);
     return kExitBadInput;
   }
+  if (!bad_ids.empty()) return kExitBadInput;
   if (streams.empty()) {
     spdlog::error("{}: no frame with both a motion estimate and a segmentation result", recording);
     return kExitBadInput;

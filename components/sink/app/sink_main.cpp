@@ -7,9 +7,12 @@
 // With several streams, each gets a folder of its own under --out. With --metadata VIDEO (the
 // source's input, an MPEG-TS with KLV) it also writes tracks.geojson and lat,lon columns, as
 // `uavmot process` does (docs/geo.md).
+// Stream ids come from the wire: only valid ids of this run are written (uavmot/sink/stream_gate.hpp).
+// A result file that cannot be written (a full disk) ends the run with exit 1; the files keep
+// every complete line written before.
 
 #include <filesystem>
-#include <fstream>
+#include <deque>
 #include <map>
 #include <memory>
 #include <optional>
@@ -25,8 +28,10 @@
 #include "tracksPubSubTypes.h"
 #include "uavmot/core/app.hpp"
 #include "uavmot/core/error.hpp"
+#include "uavmot/core/output_file.hpp"
 #include "uavmot/core/result_files.hpp"
 #include "uavmot/core/shutdown.hpp"
+#include "uavmot/core/stream_id.hpp"
 #include "uavmot/dds/chain_convert.hpp"
 #include "uavmot/dds/downlink_convert.hpp"
 #include "uavmot/dds/health_reporter.hpp"
@@ -34,6 +39,7 @@
 #include "uavmot/dds/node_support.hpp"
 #include "uavmot/geo/chain_ground.hpp"
 #include "uavmot/geo/track_map.hpp"
+#include "uavmot/sink/stream_gate.hpp"
 #include "uavmot/source/frame_source.hpp"
 
 namespace uavmot {
@@ -43,6 +49,7 @@ struct SinkOptions {
   std::string out_dir;
   double gsd_m = 0.0, fps = 25.0, idle_timeout_s = 0.0;
   int streams = 1;
+  std::vector<std::string> stream_ids;  // --stream-id: only these
   bool downlink = false;
   std::string preview_dir;  // downlink: save the JPEG previews here
   std::string metadata;     // the source's input video, for its flight metadata
@@ -50,23 +57,37 @@ struct SinkOptions {
   const geo::ChainGround* ground = nullptr;  // with --metadata: the ground under each frame
 };
 
-// Saves every JPEG preview that arrives as PREVIEW_DIR/STREAM_FRAME.jpg.
+// Saves the JPEG previews of the run's streams as PREVIEW_DIR/STREAM_FRAME.jpg. A preview that
+// arrives before its stream's first results waits (a few) until the results bind the stream.
 class PreviewSaver {
  public:
-  PreviewSaver(dds::Participant& participant, const std::string& dir)
-      : dir_(dir), reader_(participant.make_reader<msg::FramePubSubType>(dds::kDownlinkPreviewTopic, dds::TopicClass::Preview)) {
+  PreviewSaver(dds::Participant& participant, const std::string& dir, sink::StreamGate& gate)
+      : dir_(dir), gate_(gate),
+        reader_(participant.make_reader<msg::FramePubSubType>(dds::kDownlinkPreviewTopic, dds::TopicClass::Preview)) {
     std::filesystem::create_directories(dir_);
   }
   bool pump() {
+    for (auto it = pending_.begin(); it != pending_.end();) {
+      if (gate_.is_bound(it->stream_id().to_string())) {
+        save(*it);
+        it = pending_.erase(it);
+      } else {
+        ++it;
+      }
+    }
     msg::Frame sample;
     bool any = false;
     while (reader_->take(sample)) {
       any = true;
       if (sample.encoding() != msg::Encoding::JPEG || sample.data().empty()) continue;
-      const std::string name = fmt::format("{}/{}_{:06d}.jpg", dir_, sample.stream_id().to_string(), sample.frame_index());
-      std::ofstream(name, std::ios::binary).write(reinterpret_cast<const char*>(sample.data().data()),
-                                                  static_cast<std::streamsize>(sample.data().size()));
-      ++images_;
+      switch (gate_.check(reader_->topic(), sample.stream_id().to_string())) {
+        case sink::StreamGate::Verdict::Bound: save(sample); break;
+        case sink::StreamGate::Verdict::Unbound:
+          pending_.push_back(sample);
+          if (pending_.size() > kMaxPending) pending_.pop_front();  // its stream never came: nothing lost
+          break;
+        case sink::StreamGate::Verdict::Refused: break;  // counted and logged by the gate
+      }
     }
     return any;
   }
@@ -74,8 +95,17 @@ class PreviewSaver {
   uint64_t images() const { return images_; }
 
  private:
+  static constexpr size_t kMaxPending = 16;
+  void save(const msg::Frame& sample) {
+    const std::string name = fmt::format("{}/{}_{:06d}.jpg", dir_, sample.stream_id().to_string(), sample.frame_index());
+    write_output_file(name, std::string_view(reinterpret_cast<const char*>(sample.data().data()), sample.data().size()));
+    ++images_;
+  }
+
   std::string dir_;
+  sink::StreamGate& gate_;
   std::unique_ptr<dds::TopicReader<msg::FramePubSubType>> reader_;
+  std::deque<msg::Frame> pending_;
   uint64_t images_ = 0;
 };
 
@@ -84,6 +114,7 @@ class ResultFolders {
  public:
   explicit ResultFolders(const SinkOptions& o) : o_(o) {}
 
+  // STREAM must be bound by the StreamGate: its id is a safe folder name.
   ResultFilesWriter& of(const std::string& stream) {
     auto [it, fresh] = writers_.try_emplace(stream);
     if (fresh) {
@@ -104,34 +135,48 @@ class ResultFolders {
     of(stream).write_tracks(tracks);
     if (o_.ground) track_maps_[stream].add(tracks);
   }
-  void close(double seconds) {
+  // Closes every stream's files; false when one could not be written (logged), the others still close.
+  bool close(double seconds) {
+    bool ok = true;
     for (auto& [id, writer] : writers_) {
-      RunSummary summary;
-      summary.input = "dds:" + id;
-      summary.wall_time_s = seconds;
-      summary.gsd_source = o_.gsd_source;
-      if (o_.ground && !o_.ground->flight().empty()) summary.metadata = o_.ground->summary();
-      const int64_t frames = writer->frames_written();
-      writer->close(summary);
-      spdlog::info("stream '{}': {} frames written", id, frames);
-      if (o_.ground && o_.ground->has_ground_mapping()) {
-        const auto path = std::filesystem::path(writer->options().directory) / "tracks.geojson";
-        const auto counts = o_.ground->write_geojson(path, track_maps_[id], o_.fps);
-        spdlog::info("stream '{}': tracks.geojson with {} tracks ({} points without ground geometry)", id, counts.features,
-                     counts.skipped_points);
+      try {
+        close_stream(id, *writer, seconds);
+      } catch (const OutputError& e) {
+        spdlog::error("stream '{}': {}", id, e.what());
+        ok = false;
       }
     }
+    return ok;
   }
 
  private:
+  void close_stream(const std::string& id, ResultFilesWriter& writer, double seconds) {
+    RunSummary summary;
+    summary.input = "dds:" + id;
+    summary.wall_time_s = seconds;
+    summary.gsd_source = o_.gsd_source;
+    if (o_.ground && !o_.ground->flight().empty()) summary.metadata = o_.ground->summary();
+    const int64_t frames = writer.frames_written();
+    writer.close(summary);
+    spdlog::info("stream '{}': {} frames written", id, frames);
+    if (o_.ground && o_.ground->has_ground_mapping()) {
+      const auto path = std::filesystem::path(writer.options().directory) / "tracks.geojson";
+      const auto counts = o_.ground->write_geojson(path, track_maps_[id], o_.fps);
+      spdlog::info("stream '{}': tracks.geojson with {} tracks ({} points without ground geometry)", id, counts.features,
+                   counts.skipped_points);
+    }
+  }
+
   const SinkOptions& o_;
   std::map<std::string, std::unique_ptr<ResultFilesWriter>> writers_;
   std::map<std::string, geo::TrackMapRecorder> track_maps_;
 };
 
-// Runs `drain` (true when it took anything) until `finished`, the idle timeout or shutdown.
+// Runs `drain` (true when it took anything) until `finished`, the idle timeout or shutdown. False
+// when a result file could not be written (logged): the run stops there, the files keep what was
+// written.
 template <class Drain, class Finished, class Wait>
-void sink_loop(const SinkOptions& o, dds::HealthReporter& health, Drain drain, Finished finished, Wait wait) {
+bool sink_loop(const SinkOptions& o, dds::HealthReporter& health, Drain drain, Finished finished, Wait wait) try {
   auto last_sample = std::chrono::steady_clock::now();
   bool started = false;
   while (!shutdown_requested() && !finished()) {
@@ -149,6 +194,17 @@ void sink_loop(const SinkOptions& o, dds::HealthReporter& health, Drain drain, F
       }
     }
   }
+  return true;
+} catch (const OutputError& e) {
+  spdlog::error("{}; stopped writing", e.what());
+  return false;
+}
+
+// The exit code of a sink run: every stream ended and every file was written.
+int sink_exit_code(bool finished, bool written, const sink::StreamGate& gate) {
+  gate.log_summary();
+  if (!written) return kExitFailure;
+  return finished ? kExitOk : kExitFailure;
 }
 
 auto log_received = [](const auto& r) { spdlog::info("{}: {} samples, {} bytes received", r.topic(), r.samples_taken(), r.bytes_taken()); };
@@ -163,6 +219,7 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
   health.watch(*segmentation);
   health.watch(*tracks);
   dds::RejectLog rejects;
+  sink::StreamGate gate(o.streams, o.stream_ids);
   ResultFolders folders(o);
   std::map<std::string, std::set<std::string>> ended;  // per stream: the topics that ended
   std::map<std::pair<std::string, std::string>, int64_t> last_frame;  // per stream and topic
@@ -174,9 +231,17 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
     while (reader->take(sample)) {
       any = true;
       const std::string stream = sample.stream_id().to_string();
-      ResultFilesWriter& files = folders.of(stream);
       if (sample.end_of_stream()) {
-        ended[stream].insert(reader->topic());
+        if (gate.admit_end(reader->topic(), stream)) {
+          ended[stream].insert(reader->topic());
+        } else {
+          health.invalid_sample();
+        }
+        continue;
+      }
+      if (!gate.would_admit(stream)) {
+        gate.admit(reader->topic(), stream);  // counts and logs the refusal
+        health.invalid_sample();
         continue;
       }
       std::string why;
@@ -186,6 +251,8 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
         rejects.log(reader->topic(), why);
         continue;
       }
+      gate.admit(reader->topic(), stream);  // a valid sample binds its stream
+      ResultFilesWriter& files = folders.of(stream);
       // Deduplicate after validation: a malformed sample must not hide the valid one of its frame.
       int64_t& last = last_frame[{stream, reader->topic()}];
       if (value->frame_index <= last) continue;  // already written
@@ -199,7 +266,7 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
     for (const auto& [id, topics] : ended) done += topics.size() >= 3 ? 1 : 0;
     return done >= o.streams;
   };
-  sink_loop(o, health, [&] {
+  const bool written = sink_loop(o, health, [&] {
     bool any = drain(motion, [&](ResultFilesWriter& f, const MotionEstimate& m) { f.write_motion(m); health.frame_in(); });
     any |= drain(segmentation, [](ResultFilesWriter& f, const SegmentationResult& s) { f.write_segmentation(s); });
     any |= drain(tracks, [&](ResultFilesWriter&, const TrackList& t) {
@@ -208,12 +275,13 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
     });
     return any;
   }, finished, [&] { tracks->wait_for_data(std::chrono::milliseconds(50)); });
-  folders.close(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  // After a failed write no summary.json claims a complete run; the files keep their complete lines.
+  const bool closed = written && folders.close(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   log_received(*motion);
   log_received(*segmentation);
   log_received(*tracks);
   health.report(msg::ComponentState::FINISHED);
-  return finished() ? kExitOk : kExitFailure;
+  return sink_exit_code(finished(), closed, gate);
 }
 
 // The link (air -> ground): one sample per frame with what the UAV's chain produced of it.
@@ -221,9 +289,10 @@ int run_downlink_sink(dds::Participant& participant, const SinkOptions& o) {
   auto results = participant.make_reader<msg::FrameResultsPubSubType>(dds::kDownlinkResultsTopic, dds::TopicClass::Downlink);
   dds::HealthReporter health(participant, "sink", "*");
   health.watch(*results);
+  sink::StreamGate gate(o.streams, o.stream_ids);
   std::unique_ptr<PreviewSaver> preview;
   if (!o.preview_dir.empty()) {
-    preview = std::make_unique<PreviewSaver>(participant, o.preview_dir);
+    preview = std::make_unique<PreviewSaver>(participant, o.preview_dir, gate);
     health.watch(preview->reader());
   }
   dds::RejectLog rejects;
@@ -238,9 +307,17 @@ int run_downlink_sink(dds::Participant& participant, const SinkOptions& o) {
     while (results->take(sample)) {
       any = true;
       const std::string stream = sample.stream_id().to_string();
-      ResultFilesWriter& files = folders.of(stream);
       if (sample.end_of_stream()) {
-        ended.insert(stream);
+        if (gate.admit_end(results->topic(), stream)) {
+          ended.insert(stream);
+        } else {
+          health.invalid_sample();
+        }
+        continue;
+      }
+      if (!gate.would_admit(stream)) {
+        gate.admit(results->topic(), stream);  // counts and logs the refusal
+        health.invalid_sample();
         continue;
       }
       std::string why;
@@ -250,6 +327,8 @@ int run_downlink_sink(dds::Participant& participant, const SinkOptions& o) {
         rejects.log(results->topic(), why);
         continue;
       }
+      gate.admit(results->topic(), stream);  // a valid sample binds its stream
+      ResultFilesWriter& files = folders.of(stream);
       // The writer's history, sent again after the link was lost and found (transient-local),
       // repeats frames already written.
       int64_t& last = last_frame[stream];
@@ -267,12 +346,13 @@ int run_downlink_sink(dds::Participant& participant, const SinkOptions& o) {
     return any;
   };
   auto finished = [&] { return static_cast<int>(ended.size()) >= o.streams; };
-  sink_loop(o, health, drain, finished, [&] { results->wait_for_data(std::chrono::milliseconds(50)); });
-  folders.close(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+  const bool written = sink_loop(o, health, drain, finished, [&] { results->wait_for_data(std::chrono::milliseconds(50)); });
+  // After a failed write no summary.json claims a complete run; the files keep their complete lines.
+  const bool closed = written && folders.close(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   log_received(*results);
   if (preview) log_received(preview->reader());
   health.report(msg::ComponentState::FINISHED);
-  return finished() ? kExitOk : kExitFailure;
+  return sink_exit_code(finished(), closed, gate);
 }
 
 // The flight metadata of the source's input, read here rather than sent over DDS: the frame
@@ -308,7 +388,13 @@ int sink_main(int argc, char** argv) {
     auto* fps_option = app.add_option("--fps", o.fps, "frame rate, for speeds (with --metadata: default the video's)")
                            ->check(CLI::PositiveNumber)
                            ->capture_default_str();
-    app.add_option("--streams", o.streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
+    auto* streams_option =
+        app.add_option("--streams", o.streams, "write up to this many streams (the first valid ids that arrive); exit after they ended")
+            ->check(CLI::PositiveNumber)
+            ->capture_default_str();
+    app.add_option("--stream-id", o.stream_ids,
+                   "write only this stream id (repeat for several; sets --streams); default: the first ids that arrive")
+        ->check([](const std::string& id) { return stream_id_problem(id); });
     app.add_option("--idle-timeout", o.idle_timeout_s, "fail if nothing arrives for this long once started (s, 0 = wait forever)");
     app.add_flag("--downlink", o.downlink,
                  "read uavmot/downlink/results, what an air -> ground link carries (no features.csv, clusters.txt)");
@@ -317,9 +403,16 @@ int sink_main(int argc, char** argv) {
                    "the source's input video (MPEG-TS with KLV, from its first frame): adds tracks.geojson, lat,lon columns and "
                    "its GSD when --gsd is not given");
     dds::add_node_options(app, node);
-    // fps_option by value: it is a local of this set-up function, which returns before the run.
-    return [&, fps_option]() -> int {
+    // fps_option, streams_option by value: locals of this set-up function, which returns before the run.
+    return [&, fps_option, streams_option]() -> int {
       dds::finalize(node, "sink");
+      if (!o.stream_ids.empty()) {
+        const auto ids = static_cast<int>(std::set<std::string>(o.stream_ids.begin(), o.stream_ids.end()).size());
+        if (streams_option->count() > 0 && o.streams != ids) {
+          throw InputError(fmt::format("--streams {} but {} distinct --stream-id", o.streams, ids));
+        }
+        o.streams = ids;
+      }
       if (!o.preview_dir.empty() && !o.downlink) throw InputError("--preview-dir needs --downlink");
       if (o.gsd_m > 0) o.gsd_source = "flag";
       std::optional<geo::ChainGround> ground;

@@ -12,6 +12,13 @@ class InputError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+// Results could not be written (a full disk, an I/O error): the run fails, and what was written
+// before stays valid. The message names the file and the system's reason.
+class OutputError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
 // An argument outside its documented domain (programming or configuration error).
 class InvalidArgument : public std::invalid_argument {
  public:

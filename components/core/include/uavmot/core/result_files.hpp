@@ -11,10 +11,12 @@
 //   clusters.txt     MOTChallenge boxes with id -1
 //   regions.txt      MOTChallenge boxes with id -1
 //   summary.json     counts and timing
+//
+// Each call writes its frame's lines to each file with one write(2) and checks it: a full disk
+// throws OutputError naming the file and the reason, and every file keeps only complete lines.
 
 #include <cstdint>
 #include <array>
-#include <fstream>
 #include <functional>
 #include <map>
 #include <optional>
@@ -24,6 +26,7 @@
 
 #include "uavmot/core/chain_types.hpp"
 #include "uavmot/core/error.hpp"
+#include "uavmot/core/output_file.hpp"
 
 namespace uavmot {
 
@@ -76,28 +79,29 @@ class ResultFilesWriter {
   ResultFilesWriter(const ResultFilesWriter&) = delete;
   ResultFilesWriter& operator=(const ResultFilesWriter&) = delete;
 
+  // Each throws OutputError when a file cannot be written (what was written before stays valid).
   void write_motion(const MotionEstimate& motion);
   void write_segmentation(const SegmentationResult& segmentation);
   // regions.txt only (what the downlink carries of a segmentation).
   void write_printed_regions(int64_t frame_index, const std::vector<PrintedRegion>& regions);
   void write_tracks(const TrackList& tracks);
-  // Flushes and writes summary.json; further writes are errors.
+  // Closes the files and writes summary.json; further writes are errors. Throws OutputError.
   void close(RunSummary summary);
 
   const ResultFilesOptions& options() const { return options_; }
   int64_t frames_written() const { return frames_; }
 
  private:
-  std::ofstream open(const std::string& name);
+  OutputFile open(const std::string& name);
 
   ResultFilesOptions options_;
   PixelToLatLon pixel_to_lat_lon_;
-  std::ofstream tracks_;
-  std::ofstream tracks_obb_;
-  std::ofstream homographies_;
-  std::ofstream features_;
-  std::ofstream clusters_;
-  std::ofstream regions_;
+  OutputFile tracks_;
+  OutputFile tracks_obb_;
+  OutputFile homographies_;
+  OutputFile features_;
+  OutputFile clusters_;
+  OutputFile regions_;
   std::set<uint64_t> confirmed_ids_;
   int64_t frames_ = 0;
   int64_t valid_homographies_ = 0;
