@@ -30,6 +30,9 @@ struct Normaliser {
   cv::Vec3d to_image(const cv::Vec3d& e) const {
     return canonical({e[0] * scale + centre.x * e[2], e[1] * scale + centre.y * e[2], e[2]});
   }
+  cv::Vec3d from_image(const cv::Vec3d& e) const {
+    return canonical({(e[0] - centre.x * e[2]) / scale, (e[1] - centre.y * e[2]) / scale, e[2]});
+  }
 };
 
 // The line through p along velocity v, homogeneous, normalised so that its dot product with a
@@ -106,14 +109,14 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
   // RANSAC over pairs of flow lines; the generator is seeded by the frame so every run agrees.
   std::mt19937_64 rng(0x9A4A11A5ULL ^ static_cast<uint64_t>(frame_index));
   std::uniform_int_distribution<size_t> pick(0, significant.size() - 1);
+  // Last frame's epipole, in this frame's normalised coordinates: the first hypothesis (a steady
+  // camera keeps it) and the reference for stability below.
+  const cv::Vec3d previous_n = previous.support > 0 ? norm.from_image(previous.epipole) : cv::Vec3d(0, 0, 0);
   cv::Vec3d best_e(0, 0, 0);
   Support best;
-  // Last frame's epipole is the first hypothesis: a steady camera keeps it.
   if (previous.support > 0) {
-    const cv::Vec3d e(previous.epipole);
-    const cv::Vec3d en = canonical({(e[0] - norm.centre.x * e[2]) / norm.scale, (e[1] - norm.centre.y * e[2]) / norm.scale, e[2]});
-    best = count_support(en, points, samples, significant, o, nullptr);
-    best_e = en;
+    best = count_support(previous_n, points, samples, significant, o, nullptr);
+    best_e = previous_n;
   }
   // A new epipole replaces last frame's only when clearly better: noise alone would make it jitter
   // from frame to frame when the parallax is small.
@@ -152,8 +155,8 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
   if (refined_support.count >= best.count) {
     best = refined_support;
     best_e = refined;
+    count_support(best_e, points, samples, significant, o, &sides);
   }
-  count_support(best_e, points, samples, significant, o, &sides);
 
   // Spread of the supporters (image px) and their typical parallax.
   std::vector<double> along;
@@ -186,10 +189,6 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
   model_.spread_px = std::sqrt(std::max(0.0, smaller));
   model_.cap_px = o.parallax_cap_factor * median_along;
   // Stable: the same epipole (angle between the normalised vectors) and side as last frame.
-  const cv::Vec3d previous_n =
-      previous.support > 0 ? canonical({(previous.epipole[0] - norm.centre.x * previous.epipole[2]) / norm.scale,
-                                        (previous.epipole[1] - norm.centre.y * previous.epipole[2]) / norm.scale, previous.epipole[2]})
-                           : cv::Vec3d(0, 0, 0);
   // Near infinity the representative's sign flips with noise, and the side with it: compare where
   // structure moves at the image centre instead.
   const cv::Vec2d was = epipolar_direction(previous_n, cv::Point2f(0, 0)) * static_cast<double>(previous.side);
@@ -209,21 +208,18 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
 
 cv::Vec2d ParallaxFilter::independent_velocity(const ParallaxSample& sample) const {
   if (!model_.valid) return sample.velocity;
-  const cv::Vec2d u = epipolar_direction(model_.epipole, sample.position) * static_cast<double>(model_.side == 0 ? 1 : model_.side);
+  cv::Vec2d u = epipolar_direction(model_.epipole, sample.position);
+  if (model_.side != 0) u *= static_cast<double>(model_.side);
   double along = sample.velocity.dot(u);
-  if (model_.side == 0) {
-    along = std::abs(along);
-    if (sample.velocity.dot(u) < 0) return independent_along(sample.velocity, -u, along);
+  if (model_.side == 0 && along < 0.0) {  // structure on both sides: either way along the line
+    u = -u;
+    along = -along;
   }
-  if (!(along > 0.0)) return sample.velocity;  // the wrong side of the line: no structure moves that way
-  return independent_along(sample.velocity, u, along);
-}
-
-cv::Vec2d ParallaxFilter::independent_along(const cv::Vec2d& velocity, const cv::Vec2d& u, double along) const {
-  // Up to the cap, motion along the line is what a static point of some height does; beyond it no
-  // structure of this scene moves so fast, so the whole velocity is the point's own.
-  if (along > model_.cap_px) return velocity;
-  return velocity - along * u;
+  // The wrong side of the line, or beyond the cap (no structure of this scene moves so fast): the
+  // whole velocity is the point's own. Up to the cap, motion along the line is what a static point
+  // of some height does.
+  if (!(along > 0.0) || along > model_.cap_px) return sample.velocity;
+  return sample.velocity - along * u;
 }
 
 }  // namespace uavmot::motion

@@ -62,9 +62,6 @@ class ParallaxFilter {
   void reset() { model_ = ParallaxModel{}; }
 
  private:
-  // `velocity` with its component `along` (>= 0) the unit direction u removed, when within the cap.
-  cv::Vec2d independent_along(const cv::Vec2d& velocity, const cv::Vec2d& u, double along) const;
-
   const MotionOptions& options_;
   ParallaxModel model_;
 };
