@@ -8,15 +8,9 @@ set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 bin=$1
 out=$2
-for tool in node npm /usr/bin/chromium; do
-  if ! command -v "$tool" >/dev/null; then
-    echo "browser_video_playback: $tool is required (bash tools/install_deps.sh)" >&2
-    exit 1
-  fi
-done
-if [[ ! -f "$here/node_modules/.package-lock.json" || "$here/package-lock.json" -nt "$here/node_modules/.package-lock.json" ]]; then
-  (cd "$here" && npm ci --no-audit --no-fund --loglevel=error)
-fi
+source "$here/../support/node_packages.sh"
+require_tools browser_video_playback node npm /usr/bin/chromium
+install_node_packages "$here"
 rm -rf "$out"
 mkdir -p "$out"
 "$bin/uavmot-sim" --preset paper --seed 1 --frames 30 --out "$out/paper" > "$out/sim.log"

@@ -15,15 +15,9 @@ bin=$1
 footprints=$2
 ts=$3
 out=$4
-for tool in node npm ffmpeg; do
-  if ! command -v "$tool" >/dev/null; then
-    echo "geo_process_geojson_validator: $tool is required (bash tools/install_deps.sh)" >&2
-    exit 1
-  fi
-done
-if [[ ! -f "$here/node_modules/.package-lock.json" || "$here/package-lock.json" -nt "$here/node_modules/.package-lock.json" ]]; then
-  (cd "$here" && npm ci --no-audit --no-fund --loglevel=error)
-fi
+source "$here/../support/node_packages.sh"
+require_tools geo_process_geojson_validator node npm ffmpeg
+install_node_packages "$here"
 rm -rf "$out"
 mkdir -p "$out"
 

@@ -3,11 +3,7 @@
 #   check_recording.sh RECORDING.mcap EXPECTED_JSON
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
-if ! command -v node >/dev/null || ! command -v npm >/dev/null; then
-  echo "check_recording: node and npm are required (bash tools/install_deps.sh)" >&2
-  exit 1
-fi
-if [[ ! -f "$here/node_modules/.package-lock.json" || "$here/package-lock.json" -nt "$here/node_modules/.package-lock.json" ]]; then
-  (cd "$here" && npm ci --no-audit --no-fund --loglevel=error)
-fi
+source "$here/../support/node_packages.sh"
+require_tools check_recording node npm
+install_node_packages "$here"
 exec node "$here/check_recording.mjs" "$@"
