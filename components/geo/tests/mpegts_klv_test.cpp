@@ -169,7 +169,7 @@ TEST(MpegTsKlv, CutPesCountsAndKeepsWholeUnits) {
   const V klv = test::from_hex(test::kHandMade0601Hex);
   TsBuilder ts;
   V pes = metadata_pes(klv, 90000);
-  pes.resize(pes.size() - 20);  // lose the end: PES_packet_length now promises more than there is
+  pes.erase(pes.end() - 20, pes.end());  // lose the end: PES_packet_length now promises more than there is
   ts.pes(0x0200, pes);
   const MpegTsKlv out = parse_mpegts_klv(ts.bytes);
   EXPECT_TRUE(out.klv.empty());
