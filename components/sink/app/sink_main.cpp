@@ -8,6 +8,8 @@
 // source's input, an MPEG-TS with KLV) it also writes tracks.geojson and lat,lon columns, as
 // `uavmot process` does (docs/geo.md).
 // Stream ids come from the wire: only valid ids of this run are written (uavmot/sink/stream_gate.hpp).
+// With --stream-timeout a stream (a UAV) silent that long is given up as lost: the run goes on and
+// ends with the other streams' ends (uavmot/sink/stream_liveness.hpp), and exits 1 to say so.
 // A result file that cannot be written (a full disk) ends the run with exit 1; the files keep
 // every complete line written before.
 
@@ -40,6 +42,7 @@
 #include "uavmot/geo/chain_ground.hpp"
 #include "uavmot/geo/track_map.hpp"
 #include "uavmot/sink/stream_gate.hpp"
+#include "uavmot/sink/stream_liveness.hpp"
 #include "uavmot/source/frame_source.hpp"
 
 namespace uavmot {
@@ -47,7 +50,7 @@ namespace {
 
 struct SinkOptions {
   std::string out_dir;
-  double gsd_m = 0.0, fps = 25.0, idle_timeout_s = 0.0;
+  double gsd_m = 0.0, fps = 25.0, idle_timeout_s = 0.0, stream_timeout_s = 0.0;
   int streams = 1;
   std::vector<std::string> stream_ids;  // --stream-id: only these
   bool downlink = false;
@@ -200,10 +203,30 @@ bool sink_loop(const SinkOptions& o, dds::HealthReporter& health, Drain drain, F
   return false;
 }
 
-// The exit code of a sink run: every stream ended and every file was written.
-int sink_exit_code(bool finished, bool written, const sink::StreamGate& gate) {
+// Logs the streams that went silent for the timeout; they count as done from now on.
+void give_up_silent_streams(sink::StreamLiveness& liveness) {
+  for (const auto& id : liveness.newly_lost(std::chrono::steady_clock::now())) {
+    spdlog::error("stream '{}': nothing for {} s after frame {}: given up as lost; the run goes on with the other streams "
+                  "(its files keep what arrived; it is written again if it comes back before the run ends)",
+                  id, liveness.timeout_s(), liveness.last_frame(id));
+  }
+}
+
+// A sample of STREAM's frame FRAME_INDEX was accepted.
+void heard(sink::StreamLiveness& liveness, const std::string& stream, int64_t frame_index) {
+  if (liveness.heard(stream, frame_index, std::chrono::steady_clock::now())) {
+    spdlog::warn("stream '{}' is back (frame {}) after it was given up as lost", stream, frame_index);
+  }
+}
+
+// The exit code of a sink run: every stream ended (none lost) and every file was written.
+int sink_exit_code(bool finished, bool written, const sink::StreamGate& gate, const sink::StreamLiveness& liveness) {
   gate.log_summary();
   if (!written) return kExitFailure;
+  if (liveness.lost_count() > 0) {
+    spdlog::error("{} stream(s) lost before their end of stream (--stream-timeout {} s)", liveness.lost_count(), liveness.timeout_s());
+    return kExitFailure;
+  }
   return finished ? kExitOk : kExitFailure;
 }
 
@@ -221,6 +244,7 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
   dds::RejectLog rejects;
   sink::StreamGate gate(o.streams, o.stream_ids);
   ResultFolders folders(o);
+  sink::StreamLiveness liveness(o.stream_timeout_s);
   std::map<std::string, std::set<std::string>> ended;  // per stream: the topics that ended
   std::map<std::pair<std::string, std::string>, int64_t> last_frame;  // per stream and topic
   const auto start = std::chrono::steady_clock::now();
@@ -233,7 +257,7 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
       const std::string stream = sample.stream_id().to_string();
       if (sample.end_of_stream()) {
         if (gate.admit_end(reader->topic(), stream)) {
-          ended[stream].insert(reader->topic());
+          if (ended[stream].insert(reader->topic()).second && ended[stream].size() == 3) liveness.ended(stream);
         } else {
           health.invalid_sample();
         }
@@ -252,6 +276,7 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
         continue;
       }
       gate.admit(reader->topic(), stream);  // a valid sample binds its stream
+      heard(liveness, stream, value->frame_index);
       ResultFilesWriter& files = folders.of(stream);
       // Deduplicate after validation: a malformed sample must not hide the valid one of its frame.
       int64_t& last = last_frame[{stream, reader->topic()}];
@@ -262,9 +287,9 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
     return any;
   };
   auto finished = [&] {
-    int done = 0;
+    size_t done = liveness.lost_count();
     for (const auto& [id, topics] : ended) done += topics.size() >= 3 ? 1 : 0;
-    return done >= o.streams;
+    return static_cast<int>(done) >= o.streams;
   };
   const bool written = sink_loop(o, health, [&] {
     bool any = drain(motion, [&](ResultFilesWriter& f, const MotionEstimate& m) { f.write_motion(m); health.frame_in(); });
@@ -273,6 +298,7 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
       folders.write_tracks(t.stream_id, t);
       health.frame_out(t.frame_index, 0.0, dds::latency_ms_since(t.capture_time_ns));
     });
+    give_up_silent_streams(liveness);
     return any;
   }, finished, [&] { tracks->wait_for_data(std::chrono::milliseconds(50)); });
   // After a failed write no summary.json claims a complete run; the files keep their complete lines.
@@ -281,7 +307,7 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
   log_received(*segmentation);
   log_received(*tracks);
   health.report(msg::ComponentState::FINISHED);
-  return sink_exit_code(finished(), closed, gate);
+  return sink_exit_code(finished(), closed, gate, liveness);
 }
 
 // The link (air -> ground): one sample per frame with what the UAV's chain produced of it.
@@ -297,6 +323,7 @@ int run_downlink_sink(dds::Participant& participant, const SinkOptions& o) {
   }
   dds::RejectLog rejects;
   ResultFolders folders(o);
+  sink::StreamLiveness liveness(o.stream_timeout_s);
   std::map<std::string, int64_t> last_frame;  // per stream
   std::set<std::string> ended;
   const auto start = std::chrono::steady_clock::now();
@@ -310,6 +337,7 @@ int run_downlink_sink(dds::Participant& participant, const SinkOptions& o) {
       if (sample.end_of_stream()) {
         if (gate.admit_end(results->topic(), stream)) {
           ended.insert(stream);
+          liveness.ended(stream);
         } else {
           health.invalid_sample();
         }
@@ -328,6 +356,7 @@ int run_downlink_sink(dds::Participant& participant, const SinkOptions& o) {
         continue;
       }
       gate.admit(results->topic(), stream);  // a valid sample binds its stream
+      heard(liveness, stream, sample.frame_index());
       ResultFilesWriter& files = folders.of(stream);
       // The writer's history, sent again after the link was lost and found (transient-local),
       // repeats frames already written.
@@ -343,16 +372,17 @@ int run_downlink_sink(dds::Participant& participant, const SinkOptions& o) {
       health.frame_out(sample.frame_index(), 0.0, dds::latency_ms_since(sample.capture_time_ns()));
     }
     if (preview) any |= preview->pump();
+    give_up_silent_streams(liveness);
     return any;
   };
-  auto finished = [&] { return static_cast<int>(ended.size()) >= o.streams; };
+  auto finished = [&] { return static_cast<int>(ended.size() + liveness.lost_count()) >= o.streams; };
   const bool written = sink_loop(o, health, drain, finished, [&] { results->wait_for_data(std::chrono::milliseconds(50)); });
   // After a failed write no summary.json claims a complete run; the files keep their complete lines.
   const bool closed = written && folders.close(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   log_received(*results);
   if (preview) log_received(preview->reader());
   health.report(msg::ComponentState::FINISHED);
-  return sink_exit_code(finished(), closed, gate);
+  return sink_exit_code(finished(), closed, gate, liveness);
 }
 
 // The flight metadata of the source's input, read here rather than sent over DDS: the frame
@@ -396,6 +426,10 @@ int sink_main(int argc, char** argv) {
                    "write only this stream id (repeat for several; sets --streams); default: the first ids that arrive")
         ->check([](const std::string& id) { return stream_id_problem(id); });
     app.add_option("--idle-timeout", o.idle_timeout_s, "fail if nothing arrives for this long once started (s, 0 = wait forever)");
+    app.add_option("--stream-timeout", o.stream_timeout_s,
+                   "give up a stream (a UAV) that sent nothing for this long: the others go on, exit 1 at the end (s, 0 = wait "
+                   "forever)")
+        ->check(CLI::NonNegativeNumber);
     app.add_flag("--downlink", o.downlink,
                  "read uavmot/downlink/results, what an air -> ground link carries (no features.csv, clusters.txt)");
     app.add_option("--preview-dir", o.preview_dir, "with --downlink: save the link's JPEG previews here");
