@@ -10,8 +10,9 @@
 namespace uavmot::fuzz {
 
 int mcap_reader(const uint8_t* data, size_t size);        // MCAP bytes -> Reader
-int sample_validators(const uint8_t* data, size_t size);  // CDR bytes -> chain samples -> from_msg
+int sample_validators(const uint8_t* data, size_t size);  // CDR bytes -> chain/downlink/state samples -> validation
 int config(const uint8_t* data, size_t size);             // YAML text -> ConfigNode, scene, launch profile
 int eval_files(const uint8_t* data, size_t size);         // first byte picks the file kind, rest is its text
+int recording(const uint8_t* data, size_t size);          // MCAP bytes -> eval --recording, recover, again
 
 }  // namespace uavmot::fuzz

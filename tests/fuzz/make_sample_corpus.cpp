@@ -10,11 +10,15 @@
 #include <fastdds/rtps/common/SerializedPayload.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "downlinkPubSubTypes.h"
 #include "framePubSubTypes.h"
 #include "motionPubSubTypes.h"
 #include "segmentationPubSubTypes.h"
+#include "tracker_statePubSubTypes.h"
+#include "tracker_state_io.hpp"
 #include "tracksPubSubTypes.h"
 #include "uavmot/dds/chain_convert.hpp"
+#include "uavmot/dds/downlink_convert.hpp"
 #include "uavmot/dds/frame_convert.hpp"
 
 namespace {
@@ -80,5 +84,24 @@ int main(int argc, char** argv) {
   track.feature_ids = {1, 2};
   tracks.tracks = {track};
   write<msg::TrackListPubSubType>(out + "/tracks", 3, dds::to_msg(tracks));
+
+  dds::FrameParts parts;
+  parts.motion = motion;
+  parts.segmentation = segmentation;
+  parts.tracks = tracks;
+  write<msg::FrameResultsPubSubType>(out + "/downlink_results", 4, dds::to_downlink_msg("uav1", 3, parts));
+
+  tracking::TrackerState state;
+  state.next_id = 13;
+  tracking::TrackRecord record;
+  record.id = 12;
+  record.state = TrackState::Confirmed;
+  record.mean = {11.1, 22.2, 5.3, 15.4, -60, 1.5, -0.25};
+  for (int i = 0; i < tracking::kStateSize; ++i) record.covariance[i * tracking::kStateSize + i] = 1.0;
+  record.anchor_box = track.box;
+  record.age = 40;
+  record.hits = 30;
+  state.tracks = {record};
+  write<msg::TrackerSnapshotPubSubType>(out + "/tracker_state", 5, tracking::to_msg(state, "uav1", 3));
   return 0;
 }

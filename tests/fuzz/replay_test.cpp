@@ -11,6 +11,8 @@
 #include <gtest/gtest.h>
 
 #include "fuzz_targets.hpp"
+#include "recorded_predictions.hpp"
+#include "uavmot/mcap/recover.hpp"
 
 namespace uavmot::fuzz {
 namespace {
@@ -53,8 +55,27 @@ TEST_P(FuzzReplay, SeedsAndPastCrashesRunClean) {
 
 INSTANTIATE_TEST_SUITE_P(Targets, FuzzReplay,
                          ::testing::Values(Case{"mcap_reader", &mcap_reader}, Case{"sample_validators", &sample_validators},
-                                           Case{"config", &config}, Case{"eval_files", &eval_files}),
+                                           Case{"config", &config}, Case{"eval_files", &eval_files},
+                                           Case{"recording", &recording}),
                          [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
+
+// The recording seeds must reach the whole path, not stop at the first check: the intact one scores
+// as a recording of three frames, and the crashed one recovers to every complete chunk.
+TEST(FuzzSeeds, RecordingSeedsAreRecordingsEvalReads) {
+  const fs::path dir = fs::path(UAVMOT_FUZZ_DIR) / "corpus/recording";
+  eval::SequenceInfo info;
+  info.length = 10;
+  info.width = 640;
+  info.height = 480;
+  const eval::Predictions intact = eval::load_recorded_predictions((dir / "tiny.mcap").string(), "", info);
+  EXPECT_EQ(intact.boxes.size(), 3u);
+  EXPECT_EQ(intact.homographies.size(), 3u);
+  const fs::path repaired = fs::temp_directory_path() / "uavmot_fuzz_seed_repaired.mcap";
+  const mcap::RecoverResult recovered = mcap::recover((dir / "tiny_crashed_no_summary.partial").string(), repaired.string());
+  EXPECT_GE(recovered.messages, 2u);
+  EXPECT_FALSE(eval::load_recorded_predictions(repaired.string(), "", info).boxes.empty());
+  fs::remove(repaired);
+}
 
 }  // namespace
 }  // namespace uavmot::fuzz
