@@ -10,7 +10,7 @@ void add_node_options(CLI::App& app, NodeOptions& options) {
   group->add_option("--domain", options.dds.domain_id, "DDS domain id")->check(CLI::Range(0, 232))->capture_default_str();
   group->add_option("--qos-profiles", options.dds.profiles_file, "Fast DDS XML profiles (default: " + default_profiles_file() + ")");
   group->add_option("--transport", options.dds.participant_profile,
-                    "participant profile: local (shared memory + UDP, one host), shm (shared memory only) or udp (between hosts)")
+                    "participant profile: local (shared memory + UDP on loopback: one host, closed to the LAN), shm (shared memory only) or udp (between hosts)")
       ->capture_default_str();
   group->add_option("--discovery-server", options.dds.discovery_server,
                     "IP:PORT of a Fast DDS Discovery Server (id 0) instead of multicast discovery; empty: multicast");
