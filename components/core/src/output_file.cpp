@@ -12,8 +12,18 @@
 
 namespace uavmot {
 
-OutputFile::OutputFile(std::string path) : path_(std::move(path)) {
-  fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+OutputFile::OutputFile(std::string path) : path_(std::move(path)) { open_fd(O_TRUNC); }
+
+OutputFile::OutputFile(std::string path, uint64_t keep_bytes) : path_(std::move(path)) {
+  open_fd(0);
+  if (::ftruncate(fd_, static_cast<off_t>(keep_bytes)) != 0 || ::lseek(fd_, 0, SEEK_END) != static_cast<off_t>(keep_bytes)) {
+    fail("cannot continue", errno);
+  }
+  bytes_ = keep_bytes;
+}
+
+void OutputFile::open_fd(int flags) {
+  fd_ = ::open(path_.c_str(), O_WRONLY | O_CREAT | O_CLOEXEC | flags, 0644);
   if (fd_ < 0) {
     // A full or failing disk is the run's failure; anything else (no such folder, no permission)
     // is a bad output path.

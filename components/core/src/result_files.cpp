@@ -9,6 +9,7 @@
 
 #include "uavmot/core/error.hpp"
 #include "uavmot/core/printed_number.hpp"
+#include "result_files_resume.hpp"
 
 namespace uavmot {
 namespace {
@@ -34,27 +35,40 @@ ResultFilesWriter::ResultFilesWriter(ResultFilesOptions options, PixelToLatLon p
   std::error_code ec;
   std::filesystem::create_directories(options_.directory, ec);
   if (ec) throw InputError("cannot create output folder '" + options_.directory + "': " + ec.message());
-  tracks_ = open("tracks.txt");
-  tracks_obb_ = open("tracks_obb.csv");
-  homographies_ = open("homographies.txt");
-  std::string header = "frame,id,state,cx,cy,width,length,angle_deg,vx,vy";
-  if (options_.gsd_m > 0.0) header += ",cx_m,cy_m,width_m,length_m,speed_mps,speed_kmh";
-  if (pixel_to_lat_lon_) header += ",lat,lon";
-  tracks_obb_.append(header + "\n");
+  std::string obb_header = "frame,id,state,cx,cy,width,length,angle_deg,vx,vy";
+  if (options_.gsd_m > 0.0) obb_header += ",cx_m,cy_m,width_m,length_m,speed_mps,speed_kmh";
+  if (pixel_to_lat_lon_) obb_header += ",lat,lon";
+  const std::string features_header = "frame,feature_id,x,y,vx,vy,moving";
+  std::map<std::string, uint64_t> keep;  // file -> bytes kept of a continued run
+  if (options_.resume) {
+    const auto scan = detail::scan_for_resume(options_.directory, options_.resume_whole_frames,
+                                              {{"tracks_obb.csv", obb_header}, {"features.csv", features_header}});
+    keep = scan.keep_bytes;
+    resumed_at_ = scan.point;
+    frames_ = scan.frames;
+    valid_homographies_ = scan.non_identity_homographies;
+    confirmed_ids_ = scan.confirmed_ids;
+  }
+  tracks_ = open("tracks.txt", keep);
+  tracks_obb_ = open("tracks_obb.csv", keep);
+  if (tracks_obb_.bytes() == 0) tracks_obb_.append(obb_header + "\n");
+  homographies_ = open("homographies.txt", keep);
   if (options_.write_features) {
-    features_ = open("features.csv");
-    features_.append("frame,feature_id,x,y,vx,vy,moving\n");
+    features_ = open("features.csv", keep);
+    if (features_.bytes() == 0) features_.append(features_header + "\n");
   }
   if (options_.write_segmentation) {
-    if (options_.write_clusters) clusters_ = open("clusters.txt");
-    regions_ = open("regions.txt");
+    if (options_.write_clusters) clusters_ = open("clusters.txt", keep);
+    regions_ = open("regions.txt", keep);
   }
 }
 
 ResultFilesWriter::~ResultFilesWriter() = default;
 
-OutputFile ResultFilesWriter::open(const std::string& name) {
-  return OutputFile((std::filesystem::path(options_.directory) / name).string());
+OutputFile ResultFilesWriter::open(const std::string& name, const std::map<std::string, uint64_t>& keep_bytes) {
+  const std::string path = (std::filesystem::path(options_.directory) / name).string();
+  const auto keep = keep_bytes.find(name);
+  return keep == keep_bytes.end() ? OutputFile(path) : OutputFile(path, keep->second);
 }
 
 void ResultFilesWriter::write_motion(const MotionEstimate& motion) {
@@ -63,16 +77,18 @@ void ResultFilesWriter::write_motion(const MotionEstimate& motion) {
   if (motion.quality.valid) ++valid_homographies_;
   Homography h = motion.homography;
   if (!normalize_homography(h)) h = identity_homography();
+  if (options_.write_features) {
+    std::string lines;
+    for (const auto& f : motion.features) {
+      lines += fmt::format("{},{},{:.3f},{:.3f},{:.4f},{:.4f},{}\n", motion.frame_index, f.id, f.position.x, f.position.y,
+                           f.velocity[0], f.velocity[1], f.moving ? 1 : 0);
+    }
+    features_.append(lines);
+  }
+  // Last: homographies.txt marks the frame's motion whole (a continued run cuts features.csv to it).
   std::string line = std::to_string(motion.frame_index);
   for (int i = 0; i < 9; ++i) line += fmt::format(",{:.10g}", h.val[i]);
   homographies_.append(line + "\n");
-  if (!options_.write_features) return;
-  std::string lines;
-  for (const auto& f : motion.features) {
-    lines += fmt::format("{},{},{:.3f},{:.3f},{:.4f},{:.4f},{}\n", motion.frame_index, f.id, f.position.x, f.position.y,
-                         f.velocity[0], f.velocity[1], f.moving ? 1 : 0);
-  }
-  features_.append(lines);
 }
 
 void ResultFilesWriter::write_segmentation(const SegmentationResult& segmentation) {
@@ -124,7 +140,7 @@ void ResultFilesWriter::write_tracks(const TrackList& tracks) {
     obb += "\n";
   }
   tracks_.append(mot);
-  tracks_obb_.append(obb);
+  tracks_obb_.append(obb);  // last: marks the frame's tracks whole
   confirmed_ids_.merge(confirmed);  // counted once written
 }
 

@@ -11,7 +11,8 @@
 // With --stream-timeout a stream (a UAV) silent that long is given up as lost: the run goes on and
 // ends with the other streams' ends (uavmot/sink/stream_liveness.hpp), and exits 1 to say so.
 // A result file that cannot be written (a full disk) ends the run with exit 1; the files keep
-// every complete line written before.
+// every complete line written before. With --resume a restarted sink continues the unfinished run
+// in --out: its files keep every whole frame, and frames that come again are skipped.
 
 #include <filesystem>
 #include <deque>
@@ -54,6 +55,7 @@ struct SinkOptions {
   int streams = 1;
   std::vector<std::string> stream_ids;  // --stream-id: only these
   bool downlink = false;
+  bool resume = false;      // continue the unfinished run in out_dir
   std::string preview_dir;  // downlink: save the JPEG previews here
   std::string metadata;     // the source's input video, for its flight metadata
   std::string gsd_source;   // summary.json: flag, klv, or empty (no GSD)
@@ -127,9 +129,16 @@ class ResultFolders {
       r.gsd_m = o_.gsd_m;
       // The downlink carries neither features nor clusters: no empty files pretending otherwise.
       r.write_features = r.write_clusters = !o_.downlink;
+      r.resume = o_.resume;
+      r.resume_whole_frames = o_.downlink;  // one sample per frame, homographies.txt written last
       it->second = std::make_unique<ResultFilesWriter>(
           r, o_.ground && o_.ground->has_ground_mapping() ? o_.ground->pixel_to_lat_lon() : PixelToLatLon{});
       spdlog::info("stream '{}' -> {}", stream, r.directory);
+      const ResumePoint& at = it->second->resumed_at();
+      if (o_.resume && at.motion_frame + at.segmentation_frame + at.tracks_frame > 0) {
+        spdlog::info("stream '{}': continuing the run in {}: it holds motion to frame {}, segmentation to {}, tracks to {}",
+                     stream, r.directory, at.motion_frame, at.segmentation_frame, at.tracks_frame);
+      }
     }
     return *it->second;
   }
@@ -279,8 +288,13 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
       heard(liveness, stream, value->frame_index);
       ResultFilesWriter& files = folders.of(stream);
       // Deduplicate after validation: a malformed sample must not hide the valid one of its frame.
-      int64_t& last = last_frame[{stream, reader->topic()}];
-      if (value->frame_index <= last) continue;  // already written
+      const std::string& topic = reader->topic();
+      const ResumePoint& at = files.resumed_at();
+      int64_t& last = last_frame.try_emplace({stream, topic}, topic == dds::kMotionTopic         ? at.motion_frame
+                                                             : topic == dds::kSegmentationTopic ? at.segmentation_frame
+                                                                                                : at.tracks_frame)
+                          .first->second;
+      if (value->frame_index <= last) continue;  // already written (before a restart, too)
       last = value->frame_index;
       write(files, *value);
     }
@@ -360,15 +374,16 @@ int run_downlink_sink(dds::Participant& participant, const SinkOptions& o) {
       ResultFilesWriter& files = folders.of(stream);
       // The writer's history, sent again after the link was lost and found (transient-local),
       // repeats frames already written.
-      int64_t& last = last_frame[stream];
+      int64_t& last = last_frame.try_emplace(stream, files.resumed_at().motion_frame).first->second;
       if (sample.frame_index() <= last) continue;
       last = sample.frame_index();
+      if (parts->regions) files.write_printed_regions(sample.frame_index(), *parts->regions);
+      if (parts->tracks) folders.write_tracks(stream, *parts->tracks);
+      // Last: homographies.txt marks the frame whole for a sink that continues after a crash.
       if (parts->motion) {
         files.write_motion(*parts->motion);
         health.frame_in();
       }
-      if (parts->regions) files.write_printed_regions(sample.frame_index(), *parts->regions);
-      if (parts->tracks) folders.write_tracks(stream, *parts->tracks);
       health.frame_out(sample.frame_index(), 0.0, dds::latency_ms_since(sample.capture_time_ns()));
     }
     if (preview) any |= preview->pump();
@@ -430,6 +445,9 @@ int sink_main(int argc, char** argv) {
                    "give up a stream (a UAV) that sent nothing for this long: the others go on, exit 1 at the end (s, 0 = wait "
                    "forever)")
         ->check(CLI::NonNegativeNumber);
+    app.add_flag("--resume", o.resume,
+                 "continue the unfinished run in --out after a crash or restart: keep its files (cut to whole frames) and "
+                 "skip the frames they hold when they come again; refused for a finished run (summary.json)");
     app.add_flag("--downlink", o.downlink,
                  "read uavmot/downlink/results, what an air -> ground link carries (no features.csv, clusters.txt)");
     app.add_option("--preview-dir", o.preview_dir, "with --downlink: save the link's JPEG previews here");

@@ -17,6 +17,9 @@ class OutputFile {
   // Creates or truncates PATH; throws InputError when it cannot be opened (OutputError on a full
   // or failing disk).
   explicit OutputFile(std::string path);
+  // Opens PATH to continue it: keeps its first KEEP_BYTES (whole lines; the rest is cut) and
+  // appends after them. Creates PATH when it does not exist and KEEP_BYTES is 0.
+  OutputFile(std::string path, uint64_t keep_bytes);
   ~OutputFile();
   OutputFile(OutputFile&& other) noexcept;
   OutputFile& operator=(OutputFile&& other) noexcept;
@@ -33,6 +36,7 @@ class OutputFile {
   uint64_t bytes() const { return bytes_; }
 
  private:
+  void open_fd(int flags);
   [[noreturn]] void fail(const std::string& what, int error);
 
   std::string path_;

@@ -14,6 +14,9 @@
 //
 // Each call writes its frame's lines to each file with one write(2) and checks it: a full disk
 // throws OutputError naming the file and the reason, and every file keeps only complete lines.
+// A topic's frame is written with homographies.txt, regions.txt or tracks_obb.csv last, so after
+// a crash those mark the last whole frame and a continued run (ResultFilesOptions::resume) cuts
+// the other files to it.
 
 #include <cstdint>
 #include <array>
@@ -42,6 +45,21 @@ struct ResultFilesOptions {
   bool write_features = true;
   bool write_segmentation = true;
   bool write_clusters = true;  // with write_segmentation; off where clusters are not known (the downlink)
+  // Continue the unfinished run in `directory` (after a crash or a restart) instead of starting
+  // anew: its files keep every whole frame they hold and the new frames follow (resumed_at() says
+  // where). InputError when the folder holds a finished run (summary.json) or other columns.
+  bool resume = false;
+  // With resume: each frame's motion, regions and tracks were written together, homographies.txt
+  // last (the downlink sink), so every file is cut to homographies.txt's last frame.
+  bool resume_whole_frames = false;
+};
+
+// Where a continued run picks up: the last whole frame of each topic in the files. The caller
+// skips frames up to these when they arrive again.
+struct ResumePoint {
+  int64_t motion_frame = 0;        // homographies.txt (features.csv cut to it)
+  int64_t segmentation_frame = 0;  // regions.txt (clusters.txt cut to it)
+  int64_t tracks_frame = 0;        // tracks_obb.csv (tracks.txt cut to it)
 };
 
 // What the input's flight metadata held, for summary.json (docs/geo.md).
@@ -90,9 +108,11 @@ class ResultFilesWriter {
 
   const ResultFilesOptions& options() const { return options_; }
   int64_t frames_written() const { return frames_; }
+  // With ResultFilesOptions::resume: the frames the files already held (all 0 for a new run).
+  const ResumePoint& resumed_at() const { return resumed_at_; }
 
  private:
-  OutputFile open(const std::string& name);
+  OutputFile open(const std::string& name, const std::map<std::string, uint64_t>& keep_bytes);
 
   ResultFilesOptions options_;
   PixelToLatLon pixel_to_lat_lon_;
@@ -105,6 +125,7 @@ class ResultFilesWriter {
   std::set<uint64_t> confirmed_ids_;
   int64_t frames_ = 0;
   int64_t valid_homographies_ = 0;
+  ResumePoint resumed_at_;
   bool closed_ = false;
 };
 
