@@ -8,9 +8,11 @@
 //   --done:  the test creates it when the chain has finished; the client stops 2 s later
 //   --expect: the number of channels the bridge must advertise
 //   --require-kmh: some track label must read "km/h" (the bridge was given --gsd)
+//   --layout FILE: a Foxglove layout (docs/foxglove_layout.json) whose every topic the bridge
+//                  advertises and whose message paths name fields the decoded messages have
 // Exits 1 when a channel got no message, a message did not decode or validate, or time ran out.
 
-import { existsSync, writeFileSync } from "node:fs";
+import { existsSync, readFileSync, writeFileSync } from "node:fs";
 
 import wsProtocol from "@foxglove/ws-protocol";
 import WebSocket from "ws";
@@ -27,6 +29,7 @@ const timeoutS = Number(option("--timeout", "180"));
 const expectChannels = Number(option("--expect", "0"));
 const requireKmh = rest.includes("--require-kmh");
 const summaryFile = option("--summary");
+const layoutFile = option("--layout");
 if (!url || !readyFile || !doneFile) {
   console.error("usage: node bridge_client.mjs URL --ready FILE --done FILE [--timeout S] [--expect N] [--require-kmh] [--summary OUT.json]");
   process.exit(2);
@@ -73,6 +76,8 @@ client.on("message", ({ subscriptionId, data }) => {
     return t.check(false, `${entry.channel.topic}: message ${entry.count + 1} does not decode: ${e.message}`);
   }
   entry.count++;
+  entry.sample ??= value;
+  if (typeof value.component_name === "string") (entry.components ??= new Set()).add(value.component_name);
   const name = entry.channel.schemaName;
   if (name.startsWith("foxglove::")) {
     for (const error of validateFoxglove(value, name)) t.check(false, `${entry.channel.topic}#${entry.count}: ${error}`);
@@ -106,6 +111,34 @@ for (const { channel, count } of channels.values()) t.check(count > 0, `${channe
 t.check(annotatedPolygons > 0, "no track polygon (4-point LINE_LOOP) in uavmot/foxglove/tracks");
 t.check(labels > 0, "no track label in uavmot/foxglove/tracks");
 if (requireKmh) t.check(kmhLabels > 0, "no track label in km/h");
+if (layoutFile) {
+  // Every topic and message path the layout names, against what the bridge served.
+  const layout = JSON.parse(readFileSync(layoutFile, "utf8"));
+  const byTopic = new Map([...channels.values()].map((c) => [c.channel.topic, c]));
+  const paths = [];
+  for (const [id, config] of Object.entries(layout.configById)) {
+    if (config.imageMode) {
+      paths.push(config.imageMode.imageTopic);
+      paths.push(...Object.keys(config.imageMode.annotations ?? {}));
+    }
+    if (config.paths) paths.push(...config.paths.map((p) => p.value));
+    if (config.topicPath) paths.push(config.topicPath);
+    t.check(layout.layout && JSON.stringify(layout.layout).includes(id), `layout: panel ${id} is placed`);
+  }
+  for (const path of paths) {
+    const [, topic, filter, field] = /^([^.{]+)(\{[^}]*\})?(?:\.(\w+))?/.exec(path);
+    const c = byTopic.get(topic);
+    t.check(c, `layout: ${path}: the bridge does not advertise ${topic}`);
+    if (!c?.sample) continue;
+    if (filter) {
+      const [, key, want] = /\{(\w+)=="([^"]*)"\}/.exec(filter);
+      t.check(key in c.sample, `layout: ${path}: ${topic} has no field ${key}`);
+      t.check(key !== "component_name" || c.components?.has(want), `layout: ${path}: no ${key} == ${want} seen`);
+    }
+    if (field) t.check(field in c.sample, `layout: ${path}: ${topic} has no field ${field}`);
+  }
+  console.log(`layout: ${paths.length} topics and message paths checked`);
+}
 const summary = Object.fromEntries([...channels.values()].map(({ channel, count }) => [channel.topic, count]));
 console.log(`received: ${JSON.stringify(summary)}; ${labels} track labels (${kmhLabels} in km/h)`);
 if (summaryFile) writeFileSync(summaryFile, JSON.stringify({ channels: summary, labels, kmhLabels }, null, 1));

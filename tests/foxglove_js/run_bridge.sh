@@ -44,6 +44,7 @@ port=$(sed -n 's/.*ws:\/\/127\.0\.0\.1:\([0-9]*\).*/\1/p' "$out/bridge.log" | he
 expect_failure port_in_use "in use" "$bin/uavmot-foxglove" --port "$port" --domain $domain
 
 node "$here/bridge_client.mjs" "ws://127.0.0.1:$port" --ready "$out/ready" --done "$out/done" --expect 9 --require-kmh \
+  --layout "$src/docs/foxglove_layout.json" \
   --summary "$out/viewer.json" >"$out/viewer.log" 2>&1 &
 viewer=$!
 pids+=($viewer)
