@@ -33,6 +33,11 @@ expect_failure bad_port "not in range" "$bin/uavmot-foxglove" --port 70000
 expect_failure unknown_topic "matches no uavmot topic" "$bin/uavmot-foxglove" --topics uavmot/no_such_topic --domain $domain
 expect_failure bad_address "is not an IP address" "$bin/uavmot-foxglove" --address localhost:1 --domain $domain
 
+# --downlink serves the link's topics (their schemas flatten and advertise); no link runs here.
+"$bin/uavmot-foxglove" --downlink --port 0 --domain $domain --duration 1 >"$out/downlink.log" 2>&1 ||
+  { echo "FAIL: uavmot foxglove --downlink:" >&2; cat "$out/downlink.log" >&2; exit 1; }
+grep -q "serving 3 link topics" "$out/downlink.log" || { echo "FAIL: --downlink serves:" >&2; cat "$out/downlink.log" >&2; exit 1; }
+
 "$bin/uavmot-sim" --preset paper --seed 1 --frames 60 --out "$out/paper" >"$out/sim.log" 2>&1
 gsd=$(sed -n 's/^gsd=//p' "$out/paper/seqinfo.ini")
 "$bin/uavmot-foxglove" --port 0 --domain $domain --transport local --gsd "$gsd" --fps 25 >"$out/bridge.log" 2>&1 &

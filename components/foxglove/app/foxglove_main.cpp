@@ -7,6 +7,9 @@
 #include <chrono>
 #include <memory>
 
+#include "downlinkPubSubTypes.h"
+#include "framePubSubTypes.h"
+
 #include <spdlog/spdlog.h>
 
 #include "uavmot/core/app.hpp"
@@ -44,7 +47,7 @@ class TypedBridge final : public TopicBridge {
  public:
   TypedBridge(dds::Participant& participant, const record::TopicSpec& spec, const std::string& idl_dir,
               const record::FoxgloveOptions& options, foxglove::WsServer& server)
-      : reader_(spec.topic_class == dds::TopicClass::Health
+      : reader_(spec.topic_class == dds::TopicClass::Health || spec.topic_class == dds::TopicClass::Preview
                     ? participant.make_reader<PubSubType>(spec.topic, spec.topic_class)
                     : participant.make_reader<PubSubType>(spec.topic, std::string("bridge_reader"))),
         options_(options),
@@ -89,6 +92,39 @@ class TypedBridge final : public TopicBridge {
   uint32_t raw_channel_ = 0, foxglove_channel_ = 0;
 };
 
+// The air -> ground link's topics (docs/deployment.md), served with --downlink on the ground station.
+const std::vector<record::TopicSpec>& link_topics() {
+  static const std::vector<record::TopicSpec> topics = {
+      {dds::kDownlinkResultsTopic, "uavmot::msg::FrameResults", "downlink.idl", dds::TopicClass::Downlink},
+      {dds::kDownlinkPreviewTopic, "uavmot::msg::Frame", "frame.idl", dds::TopicClass::Preview},
+      *record::find_topic(dds::kHealthTopic),
+  };
+  return topics;
+}
+
+std::vector<record::TopicSpec> select_link_topics(const std::vector<std::string>& include, const std::vector<std::string>& exclude) {
+  std::string names;
+  for (const auto& spec : link_topics()) names += (names.empty() ? "" : ", ") + spec.topic;
+  for (const auto& pattern : include) {
+    bool any = false;
+    for (const auto& spec : link_topics()) any = any || record::matches_any(spec.topic, {pattern});
+    if (!any) throw InputError("--topics '" + pattern + "' matches no link topic (known with --downlink: " + names + ")");
+  }
+  std::vector<record::TopicSpec> chosen;
+  for (const auto& spec : link_topics()) {
+    if (record::is_selected(spec.topic, include, exclude)) chosen.push_back(spec);
+  }
+  if (chosen.empty()) throw InputError("--topics/--exclude leave no topic to serve");
+  return chosen;
+}
+
+template <class Fn>
+decltype(auto) with_bridge_type(const std::string& topic, Fn&& fn) {
+  if (topic == dds::kDownlinkResultsTopic) return fn.template operator()<msg::FrameResultsPubSubType>();
+  if (topic == dds::kDownlinkPreviewTopic) return fn.template operator()<msg::FramePubSubType>();
+  return record::with_topic_type(topic, std::forward<Fn>(fn));
+}
+
 int foxglove_main(int argc, char** argv) {
   dds::NodeOptions node;
   node.heap_reserve_mb = 0;
@@ -98,6 +134,7 @@ int foxglove_main(int argc, char** argv) {
   record::FoxgloveOptions options;
   uint64_t client_buffer_mb = 32;
   double duration_s = 0.0;
+  bool downlink = false;
   return run_app(argc, argv, "foxglove", "live bridge to Foxglove (WebSocket protocol) for the chain's topics", [&](CLI::App& app) {
     app.add_option("--address", server_options.address, "address to listen on (0.0.0.0: every interface)")->capture_default_str();
     app.add_option("--port", server_options.port, "TCP port (0: any free port, printed)")
@@ -105,6 +142,9 @@ int foxglove_main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--topics", topics, "uavmot topics or wildcard patterns to serve (default: every uavmot topic)");
     app.add_option("--exclude", exclude, "topics or wildcard patterns not to serve");
+    app.add_flag("--downlink", downlink,
+                 "serve the air -> ground link's topics (uavmot/downlink/results, uavmot/downlink/preview, health) "
+                 "instead of the chain's: the ground station of a split deployment");
     app.add_option("--image-format", image_format, "uavmot/foxglove/image as jpeg (CompressedImage) or raw (RawImage)")
         ->check(CLI::IsMember({"jpeg", "raw"}))
         ->capture_default_str();
@@ -124,19 +164,19 @@ int foxglove_main(int argc, char** argv) {
       dds::finalize(node, "foxglove");
       options.image_format = foxglove::parse_image_format(image_format);
       server_options.client_buffer_bytes = client_buffer_mb << 20;
-      const auto chosen = record::select_topics(topics, exclude);
+      const auto chosen = downlink ? select_link_topics(topics, exclude) : record::select_topics(topics, exclude);
       const std::string idl_dir = record::find_idl_dir();
       install_shutdown_handler();
       foxglove::WsServer server(server_options);  // listening, or a clear InputError
       dds::Participant participant(node.dds);
       std::vector<std::unique_ptr<TopicBridge>> bridges;
       for (const auto& spec : chosen) {
-        bridges.push_back(record::with_topic_type(spec.topic, [&]<class P>() -> std::unique_ptr<TopicBridge> {
+        bridges.push_back(with_bridge_type(spec.topic, [&]<class P>() -> std::unique_ptr<TopicBridge> {
           return std::make_unique<TypedBridge<P>>(participant, spec, idl_dir, options, server);
         }));
       }
-      spdlog::info("foxglove: serving {} uavmot topics on ws://{}:{} (Foxglove: Open connection -> Foxglove WebSocket)",
-                   chosen.size(), server_options.address, server.port());
+      spdlog::info("foxglove: serving {} {} topics on ws://{}:{} (Foxglove: Open connection -> Foxglove WebSocket)",
+                   chosen.size(), downlink ? "link" : "uavmot", server_options.address, server.port());
       const auto start = std::chrono::steady_clock::now();
       while (!shutdown_requested()) {
         size_t taken = 0;

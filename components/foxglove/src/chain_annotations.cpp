@@ -87,6 +87,24 @@ ImageAnnotations annotate_motion(const MotionEstimate& motion, const AnnotationS
   return out;
 }
 
+ImageAnnotations annotate_printed_regions(const std::vector<PrintedRegion>& regions, int64_t capture_time_ns) {
+  ImageAnnotations out;
+  const Time stamp = time_from_ns(capture_time_ns);
+  for (const auto& r : regions) {
+    const double x = static_cast<double>(r.x) / 1000.0, y = static_cast<double>(r.y) / 1000.0;
+    const double w = static_cast<double>(r.width) / 1000.0, h = static_cast<double>(r.height) / 1000.0;
+    PointsAnnotation p;
+    p.timestamp = stamp;
+    p.type = PointsType::LineLoop;
+    p.points = {{x, y}, {x + w, y}, {x + w, y + h}, {x, y + h}};
+    p.outline_color = colour(view::kRegionColour);
+    p.fill_color = kTransparent;
+    p.thickness = 1.0;
+    out.points.push_back(std::move(p));
+  }
+  return out;
+}
+
 ImageFormat parse_image_format(const std::string& name) {
   if (name == "jpeg") return ImageFormat::Jpeg;
   if (name == "raw") return ImageFormat::Raw;

@@ -1,6 +1,7 @@
 #include "uavmot/record/foxglove_translation.hpp"
 
 #include "uavmot/dds/chain_convert.hpp"
+#include "uavmot/dds/downlink_convert.hpp"
 #include "uavmot/dds/frame_convert.hpp"
 #include "uavmot/dds/topics.hpp"
 #include "uavmot/foxglove/encode.hpp"
@@ -9,10 +10,12 @@
 namespace uavmot::record {
 
 std::optional<FoxgloveChannelSpec> foxglove_channel(const std::string& topic, const FoxgloveOptions& options) {
-  if (topic == dds::kFramesTopic) {
-    return FoxgloveChannelSpec{"uavmot/foxglove/image", options.image_format == foxglove::ImageFormat::Jpeg
-                                                            ? foxglove::kCompressedImageSchema
-                                                            : foxglove::kRawImageSchema};
+  const char* image_schema =
+      options.image_format == foxglove::ImageFormat::Jpeg ? foxglove::kCompressedImageSchema : foxglove::kRawImageSchema;
+  if (topic == dds::kFramesTopic) return FoxgloveChannelSpec{"uavmot/foxglove/image", image_schema};
+  if (topic == dds::kDownlinkPreviewTopic) return FoxgloveChannelSpec{"uavmot/foxglove/downlink/preview", image_schema};
+  if (topic == dds::kDownlinkResultsTopic) {
+    return FoxgloveChannelSpec{"uavmot/foxglove/downlink/results", foxglove::kImageAnnotationsSchema};
   }
   if (topic == dds::kMotionTopic) return FoxgloveChannelSpec{"uavmot/foxglove/features", foxglove::kImageAnnotationsSchema};
   if (topic == dds::kSegmentationTopic) return FoxgloveChannelSpec{"uavmot/foxglove/regions", foxglove::kImageAnnotationsSchema};
@@ -61,6 +64,21 @@ std::optional<std::vector<uint8_t>> to_foxglove(msg::TrackList& sample, const Fo
 std::optional<std::vector<uint8_t>> to_foxglove(msg::ComponentHealth&, const FoxgloveOptions&, std::string& why) {
   why.clear();
   return std::nullopt;
+}
+
+std::optional<std::vector<uint8_t>> to_foxglove(msg::FrameResults& sample, const FoxgloveOptions& options, std::string& why) {
+  why.clear();
+  if (sample.end_of_stream()) return std::nullopt;
+  const auto ground = dds::from_msg(sample, why);
+  if (!ground) return std::nullopt;
+  foxglove::ImageAnnotations out;
+  if (ground->regions) out = foxglove::annotate_printed_regions(*ground->regions, sample.capture_time_ns());
+  if (ground->tracks) {
+    auto tracks = foxglove::annotate_tracks(*ground->tracks, options.style);
+    for (auto& p : tracks.points) out.points.push_back(std::move(p));
+    for (auto& t : tracks.texts) out.texts.push_back(std::move(t));
+  }
+  return foxglove::encode(out);
 }
 
 }  // namespace uavmot::record

@@ -7,6 +7,7 @@
 #include <algorithm>
 
 #include "uavmot/dds/chain_convert.hpp"
+#include "uavmot/dds/downlink_convert.hpp"
 #include "uavmot/dds/frame_convert.hpp"
 #include "uavmot/foxglove/schemas.hpp"
 #include "uavmot/record/foxglove_translation.hpp"
@@ -100,6 +101,29 @@ TEST(FoxgloveTranslation, TracksBecomeAnnotations) {
   EXPECT_EQ(u32_at(*bytes, 8), 1u);  // one polygon
   const std::string text(bytes->begin(), bytes->end());
   EXPECT_NE(text.find("#5 0.0 px/f"), std::string::npos);
+}
+
+TEST(FoxgloveTranslation, DownlinkResultsBecomeTrackAndRegionAnnotations) {
+  FoxgloveOptions options;
+  EXPECT_EQ(foxglove_channel("uavmot/downlink/results", options)->topic, "uavmot/foxglove/downlink/results");
+  EXPECT_EQ(foxglove_channel("uavmot/downlink/preview", options)->schema_name, foxglove::kCompressedImageSchema);
+  dds::FrameParts parts;
+  parts.segmentation = SegmentationResult{};
+  parts.segmentation->regions.push_back({{40, 30, 4, 8, 0}, SegmentationMethod::Fusion, 0.5, -1});
+  parts.tracks = TrackList{};
+  Track t;
+  t.id = 9;
+  t.state = TrackState::Confirmed;
+  t.box = {40, 30, 4, 8, 0};
+  parts.tracks->tracks.push_back(t);
+  auto sample = dds::to_downlink_msg("uav1", 3, parts);
+  std::string why;
+  const auto bytes = to_foxglove(sample, options, why);
+  ASSERT_TRUE(bytes) << why;
+  EXPECT_EQ(u32_at(*bytes, 4), 0u);  // no circles
+  EXPECT_EQ(u32_at(*bytes, 8), 2u);  // the region's rectangle and the track's polygon
+  const std::string text(bytes->begin(), bytes->end());
+  EXPECT_NE(text.find("#9 0.0 px/f"), std::string::npos);
 }
 
 }  // namespace

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "uavmot/core/chain_types.hpp"
+#include "uavmot/core/result_files.hpp"
 #include "uavmot/foxglove/messages.hpp"
 
 namespace uavmot::foxglove {
@@ -28,6 +29,10 @@ ImageAnnotations annotate_segmentation(const SegmentationResult& segmentation);
 // Moving features: yellow points and one velocity vector each (a line list); stationary ones as
 // red points when asked.
 ImageAnnotations annotate_motion(const MotionEstimate& motion, const AnnotationStyle& style);
+
+// Regions as the downlink carries them (axis-aligned, thousandths of a pixel: core's
+// PrintedRegion) as red rectangles, stamped with the frame's capture time.
+ImageAnnotations annotate_printed_regions(const std::vector<PrintedRegion>& regions, int64_t capture_time_ns);
 
 enum class ImageFormat { Jpeg, Raw };
 ImageFormat parse_image_format(const std::string& name);  // "jpeg" | "raw"; throws InvalidArgument

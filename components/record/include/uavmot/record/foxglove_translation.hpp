@@ -7,12 +7,16 @@
 //   uavmot/segmentation -> uavmot/foxglove/regions   foxglove::ImageAnnotations
 //   uavmot/tracks       -> uavmot/foxglove/tracks    foxglove::ImageAnnotations
 //   uavmot/health       -> (none: plot it from the uavmot type)
+// and on the ground station, from the air -> ground link (`uavmot foxglove --downlink`):
+//   uavmot/downlink/preview -> uavmot/foxglove/downlink/preview  CompressedImage (the JPEG as sent) or RawImage
+//   uavmot/downlink/results -> uavmot/foxglove/downlink/results  ImageAnnotations: tracks and regions
 
 #include <cstdint>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "downlink.h"
 #include "frame.h"
 #include "health.h"
 #include "motion.h"
@@ -43,5 +47,6 @@ std::optional<std::vector<uint8_t>> to_foxglove(msg::MotionEstimate& sample, con
 std::optional<std::vector<uint8_t>> to_foxglove(msg::Segmentation& sample, const FoxgloveOptions& options, std::string& why);
 std::optional<std::vector<uint8_t>> to_foxglove(msg::TrackList& sample, const FoxgloveOptions& options, std::string& why);
 std::optional<std::vector<uint8_t>> to_foxglove(msg::ComponentHealth& sample, const FoxgloveOptions& options, std::string& why);
+std::optional<std::vector<uint8_t>> to_foxglove(msg::FrameResults& sample, const FoxgloveOptions& options, std::string& why);
 
 }  // namespace uavmot::record
