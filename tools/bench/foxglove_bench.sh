@@ -42,10 +42,12 @@ for run in $(seq "$runs"); do
         for _ in $(seq 100); do [[ -f "$out/ready-$tag-$v" ]] && break; sleep 0.1; done
       done
     fi
+    # A failed run is reported as such and the next one goes on (a shared machine kills things).
     "$bin/uavmot-bench-live" --input "$seq" --out "$out/live-$tag" --json "$out/live-$tag.json" --domain "$domain" \
-      >"$out/live-$tag.txt" 2>"$out/live-$tag.log"
+      >"$out/live-$tag.txt" 2>"$out/live-$tag.log" || echo '{"failed": true}' >"$out/live-$tag.json"
     start=$(date +%s.%N)
-    "$bin/uavmot" launch bringup/local.yaml --input "$seq" --out "$out/lossless-$tag" --set domain="$domain" >"$out/lossless-$tag.log" 2>&1
+    "$bin/uavmot" launch bringup/local.yaml --input "$seq" --out "$out/lossless-$tag" --set domain="$domain" >"$out/lossless-$tag.log" 2>&1 ||
+      start=failed
     end=$(date +%s.%N)
     touch "$out/done-$tag"
     for p in "${pids[@]}"; do wait "$p"; done
@@ -58,11 +60,14 @@ for run in $(seq "$runs"); do
     python3 - "$out/live-$tag.json" "$start" "$end" "$config" "$run" "$bridge_line" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1]))
-start, end = float(sys.argv[2]), float(sys.argv[3])
-c = j["components"]
-drops = "/".join(str(c.get(n, {}).get("dropped", "?")) for n in ["source", "motion", "segmentation", "tracking"])
-print(f'{sys.argv[4]:<8} {sys.argv[5]:>3} | {j["track_lists"]:<11} {j["latency_ms"]["median"]:<9.1f} {j["latency_ms"]["p99"]:<8.1f} '
-      f'{drops:<12} | {250 / (end - start):<12.1f} | {sys.argv[6]}')
+fps = "failed" if sys.argv[2] == "failed" else f"{250 / (float(sys.argv[3]) - float(sys.argv[2])):.1f}"
+if j.get("failed"):
+    live = f'{"failed":<11} {"":<9} {"":<8} {"":<12}'
+else:
+    c = j["components"]
+    drops = "/".join(str(c.get(n, {}).get("dropped", "?")) for n in ["source", "motion", "segmentation", "tracking"])
+    live = f'{j["track_lists"]:<11} {j["latency_ms"]["median"]:<9.1f} {j["latency_ms"]["p99"]:<8.1f} {drops:<12}'
+print(f'{sys.argv[4]:<8} {sys.argv[5]:>3} | {live} | {fps:<12} | {sys.argv[6]}')
 PY
   done
 done
