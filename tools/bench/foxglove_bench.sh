@@ -5,13 +5,15 @@
 # to every channel, counting, not decoding). Per configuration and run:
 #   live:     uavmot-bench-live (mode=live): end-to-end latency median / p99, track lists, drops;
 #   lossless: `uavmot launch` (mode=lossless) wall time -> frames per second.
-#   bash tools/bench/foxglove_bench.sh [OUT] [RUNS]   (OUT default out/foxglove_bench, RUNS 2;
+#   bash tools/bench/foxglove_bench.sh [OUT] [RUNS] [VIEWER ARGS...]   (OUT default out/foxglove_bench, RUNS 2;
+#   VIEWER ARGS e.g. `--prefix uavmot/foxglove/`: viewers take only the Foxglove channels;
 #   DDS domain $UAVMOT_BENCH_DOMAIN, default 64; needs build/bin and tests/foxglove_js's packages)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 root=$(pwd)
 out=${1:-out/foxglove_bench}
 runs=${2:-2}
+viewer_args=("${@:3}")
 domain=${UAVMOT_BENCH_DOMAIN:-64}
 bin=$root/build/bin
 js=$root/tests/foxglove_js
@@ -35,7 +37,7 @@ for run in $(seq "$runs"); do
       for _ in $(seq 100); do grep -q serving "$out/bridge-$tag.log" && break; sleep 0.1; done
       port=$(sed -n 's/.*ws:\/\/127\.0\.0\.1:\([0-9]*\).*/\1/p' "$out/bridge-$tag.log" | head -1)
       for v in $(seq "$config"); do
-        node "$js/bench_viewer.mjs" "ws://127.0.0.1:$port" --ready "$out/ready-$tag-$v" --done "$out/done-$tag" >"$out/viewer-$tag-$v.log" 2>&1 &
+        node "$js/bench_viewer.mjs" "ws://127.0.0.1:$port" --ready "$out/ready-$tag-$v" --done "$out/done-$tag" "${viewer_args[@]}" >"$out/viewer-$tag-$v.log" 2>&1 &
         pids+=($!)
       done
       for v in $(seq "$config"); do
