@@ -65,6 +65,12 @@ for _ in $(seq 600); do [[ -f "$out/ready" && -f "$out/page_ready" ]] && break; 
 "$bin/uavmot" launch "$src/bringup/local.yaml" --input "$out/paper" --out "$out/chain" --set domain=$domain \
   --set record=true >"$out/launch.log" 2>&1 || { echo "FAIL: the chain failed:" >&2; tail -30 "$out/launch.log" >&2; exit 1; }
 touch "$out/done"
+# The bridge, started before this lossless chain, must not let a writer start before its lossless
+# readers: the recorder has every sample (uavmot foxglove subscribes once each writer has published).
+for topic in frames motion segmentation tracks; do
+  grep -q "uavmot/$topic: 61 samples; stream uav1: frames 1..60, 0 missing" "$out/launch.log" ||
+    { echo "FAIL: the recorder missed samples of uavmot/$topic:" >&2; grep "\[record" "$out/launch.log" >&2; exit 1; }
+done
 viewer_rc=0 page_rc=0
 wait $viewer || viewer_rc=$?
 wait $page || page_rc=$?

@@ -6,9 +6,12 @@
 
 #include <chrono>
 #include <memory>
+#include <set>
+#include <thread>
 
 #include "downlinkPubSubTypes.h"
 #include "framePubSubTypes.h"
+#include "healthPubSubTypes.h"
 
 #include <spdlog/spdlog.h>
 
@@ -31,6 +34,37 @@ uint64_t wall_ns() {
       std::chrono::duration_cast<std::chrono::nanoseconds>(std::chrono::system_clock::now().time_since_epoch()).count());
 }
 
+// Lossless chains: a writer starts publishing once its --wait-subscribers readers are matched, and
+// Fast DDS 2.9 cannot tell it which of them are reliable, so a best-effort bridge reader would count
+// and let it start before a lossless reader (the sink, the recorder) is there. In lossless mode the
+// bridge therefore subscribes to a chain topic only once the component writing it has reported on
+// the health topic that it published (it is past its wait; a later respawn is not covered).
+class WriterStarts {
+ public:
+  explicit WriterStarts(dds::Participant& participant)
+      : reader_(participant.make_reader<msg::ComponentHealthPubSubType>(dds::kHealthTopic, dds::TopicClass::Health)) {}
+  void update() {
+    while (reader_->take(sample_)) {
+      if (sample_.frames_out() > 0) started_.insert(sample_.component_name().to_string());
+    }
+  }
+  bool started(const std::string& component) const { return started_.count(component) > 0; }
+
+ private:
+  std::unique_ptr<dds::TopicReader<msg::ComponentHealthPubSubType>> reader_;
+  msg::ComponentHealth sample_;
+  std::set<std::string> started_;
+};
+
+// The component that writes a chain topic, as it names itself on the health topic.
+std::string writer_component(const std::string& topic) {
+  if (topic == dds::kFramesTopic) return "source";
+  if (topic == dds::kMotionTopic) return "motion";
+  if (topic == dds::kSegmentationTopic) return "segmentation";
+  if (topic == dds::kTracksTopic) return "tracking";
+  return "";  // the link's topics: their writer's health may be on the UAV's domain, not the link's
+}
+
 class TopicBridge {
  public:
   virtual ~TopicBridge() = default;
@@ -45,13 +79,11 @@ class TopicBridge {
 template <class PubSubType>
 class TypedBridge final : public TopicBridge {
  public:
+  // `starts`: subscribe only once the topic's writer has published (lossless chains); null: at once.
   TypedBridge(dds::Participant& participant, const record::TopicSpec& spec, const std::string& idl_dir,
-              const record::FoxgloveOptions& options, foxglove::WsServer& server)
-      : reader_(spec.topic_class == dds::TopicClass::Health || spec.topic_class == dds::TopicClass::Preview
-                    ? participant.make_reader<PubSubType>(spec.topic, spec.topic_class)
-                    : participant.make_reader<PubSubType>(spec.topic, std::string("bridge_reader"))),
-        options_(options),
-        server_(server) {
+              const record::FoxgloveOptions& options, foxglove::WsServer& server, const WriterStarts* starts)
+      : participant_(participant), spec_(spec), starts_(starts), options_(options), server_(server) {
+    if (!starts_ || writer_component(spec_.topic).empty()) subscribe();
     raw_channel_ = server_.add_channel({spec.topic, "cdr", spec.type_name, record::schema_text(spec, idl_dir), "omgidl"});
     if (const auto fc = record::foxglove_channel(spec.topic, options)) {
       foxglove_channel_ = server_.add_channel(
@@ -60,6 +92,11 @@ class TypedBridge final : public TopicBridge {
   }
 
   size_t drain() override {
+    if (!reader_) {
+      if (!starts_->started(writer_component(spec_.topic))) return 0;
+      subscribe();
+      spdlog::info("foxglove: {} has published; subscribing to {}", writer_component(spec_.topic), spec_.topic);
+    }
     size_t n = 0;
     while (reader_->take(sample_)) {
       ++n;
@@ -81,9 +118,22 @@ class TypedBridge final : public TopicBridge {
     }
     return n;
   }
-  bool wait_for_data(std::chrono::milliseconds timeout) override { return reader_->wait_for_data(timeout); }
+  bool wait_for_data(std::chrono::milliseconds timeout) override {
+    if (reader_) return reader_->wait_for_data(timeout);
+    std::this_thread::sleep_for(timeout);
+    return false;
+  }
 
  private:
+  void subscribe() {
+    reader_ = spec_.topic_class == dds::TopicClass::Health || spec_.topic_class == dds::TopicClass::Preview
+                  ? participant_.make_reader<PubSubType>(spec_.topic, spec_.topic_class)
+                  : participant_.make_reader<PubSubType>(spec_.topic, std::string("bridge_reader"));
+  }
+
+  dds::Participant& participant_;
+  record::TopicSpec spec_;
+  const WriterStarts* starts_;
   std::unique_ptr<dds::TopicReader<PubSubType>> reader_;
   record::FoxgloveOptions options_;
   foxglove::WsServer& server_;
@@ -169,16 +219,19 @@ int foxglove_main(int argc, char** argv) {
       install_shutdown_handler();
       foxglove::WsServer server(server_options);  // listening, or a clear InputError
       dds::Participant participant(node.dds);
+      std::unique_ptr<WriterStarts> starts;
+      if (node.dds.mode == dds::DeliveryMode::Lossless) starts = std::make_unique<WriterStarts>(participant);
       std::vector<std::unique_ptr<TopicBridge>> bridges;
       for (const auto& spec : chosen) {
         bridges.push_back(with_bridge_type(spec.topic, [&]<class P>() -> std::unique_ptr<TopicBridge> {
-          return std::make_unique<TypedBridge<P>>(participant, spec, idl_dir, options, server);
+          return std::make_unique<TypedBridge<P>>(participant, spec, idl_dir, options, server, starts.get());
         }));
       }
       spdlog::info("foxglove: serving {} {} topics on ws://{}:{} (Foxglove: Open connection -> Foxglove WebSocket)",
                    chosen.size(), downlink ? "link" : "uavmot", server_options.address, server.port());
       const auto start = std::chrono::steady_clock::now();
       while (!shutdown_requested()) {
+        if (starts) starts->update();
         size_t taken = 0;
         for (auto& b : bridges) taken += b->drain();
         if (duration_s > 0 && std::chrono::steady_clock::now() - start > std::chrono::duration<double>(duration_s)) break;
