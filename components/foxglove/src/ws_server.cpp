@@ -4,6 +4,8 @@
 
 #include <atomic>
 #include <cstring>
+#include <deque>
+#include <future>
 #include <map>
 #include <mutex>
 #include <thread>
@@ -31,10 +33,16 @@ json channel_json(uint32_t id, const WsChannel& c) {
           {"schema", c.schema}, {"schemaEncoding", c.schema_encoding}};
 }
 
+// At most this much of a client's messages sits in websocketpp's own send buffer; the rest waits
+// in the client's queue, so the bound of the queue is the bound of the client's memory.
+constexpr size_t kSocketBufferBytes = 1u << 20;
+
 struct Client {
   Server::connection_ptr connection;
   std::map<uint32_t, uint32_t> subscriptions;  // subscription id (the client's) -> channel id
   std::string peer;
+  std::deque<std::string> queue;  // binary messages not yet handed to websocketpp
+  size_t queued_bytes = 0;
 };
 }  // namespace
 
@@ -48,6 +56,41 @@ struct WsServer::Impl {
   uint32_t next_channel = 1;
   std::atomic<uint64_t> clients_seen{0}, sent{0}, dropped{0};
   uint16_t port = 0;
+  // websocketpp's connections are not thread-safe (get_buffered_amount() reads what the network
+  // thread writes: TSan), so only the network thread touches them; publish() only queues.
+  std::atomic<bool> drain_posted{false};
+  std::unique_ptr<asio::steady_timer> retry;  // network thread only
+
+  void post_drain() {
+    if (!drain_posted.exchange(true)) asio::post(server.get_io_service(), [this] { drain(); });
+  }
+
+  // Network thread: hands queued messages to websocketpp while each socket buffer has room; tries
+  // again shortly while a slow client's queue is not empty.
+  void drain() {
+    drain_posted = false;
+    bool waiting = false;
+    {
+      std::lock_guard lock(mutex);
+      for (auto& [hdl, client] : clients) {
+        while (!client.queue.empty() && client.connection->get_buffered_amount() < kSocketBufferBytes) {
+          std::string message = std::move(client.queue.front());
+          client.queue.pop_front();
+          client.queued_bytes -= message.size();
+          if (client.connection->send(message, websocketpp::frame::opcode::binary)) ++dropped;
+          else ++sent;
+        }
+        waiting = waiting || !client.queue.empty();
+      }
+    }
+    if (waiting) {
+      if (!retry) retry = std::make_unique<asio::steady_timer>(server.get_io_service());
+      retry->expires_after(std::chrono::milliseconds(2));
+      retry->async_wait([this](const asio::error_code& ec) {
+        if (!ec) post_drain();
+      });
+    }
+  }
 
   void send_text(const Server::connection_ptr& con, const json& message) {
     con->send(message.dump(), websocketpp::frame::opcode::text);  // an error: the connection is closing
@@ -74,7 +117,9 @@ struct WsServer::Impl {
     json advertise = {{"op", "advertise"}, {"channels", json::array()}};
     {
       std::lock_guard lock(mutex);
-      clients[hdl] = Client{con, {}, con->get_remote_endpoint()};
+      Client& client = clients[hdl];
+      client.connection = con;
+      client.peer = con->get_remote_endpoint();
       for (const auto& [id, c] : channels) advertise["channels"].push_back(channel_json(id, c));
     }
     ++clients_seen;
@@ -160,12 +205,17 @@ WsServer::WsServer(WsServerOptions options) : impl_(std::make_unique<Impl>()) {
 
 WsServer::~WsServer() {
   Impl& s = *impl_;
-  websocketpp::lib::error_code ec;
-  s.server.stop_listening(ec);
-  {
+  // On the network thread, like every other use of the acceptor and the connections.
+  std::promise<void> closing;
+  asio::post(s.server.get_io_service(), [&s, &closing] {
+    websocketpp::lib::error_code ec;
+    s.server.stop_listening(ec);
+    if (s.retry) s.retry->cancel();
     std::lock_guard lock(s.mutex);
     for (auto& [hdl, client] : s.clients) client.connection->close(websocketpp::close::status::going_away, "uavmot foxglove stops", ec);
-  }
+    closing.set_value();
+  });
+  closing.get_future().wait_for(std::chrono::seconds(2));
   // Give the close frames a moment to leave, then stop the network thread.
   for (int i = 0; i < 50 && counts().clients > 0; ++i) std::this_thread::sleep_for(std::chrono::milliseconds(10));
   s.server.stop();
@@ -180,7 +230,10 @@ uint32_t WsServer::add_channel(const WsChannel& channel) {
   const uint32_t id = s.next_channel++;
   s.channels[id] = channel;
   const json advertise = {{"op", "advertise"}, {"channels", json::array({channel_json(id, channel)})}};
-  for (auto& [hdl, client] : s.clients) s.send_text(client.connection, advertise);
+  asio::post(s.server.get_io_service(), [&s, advertise] {
+    std::lock_guard inner(s.mutex);
+    for (auto& [hdl, client] : s.clients) s.send_text(client.connection, advertise);
+  });
   return id;
 }
 
@@ -200,20 +253,25 @@ void WsServer::publish(uint32_t channel_id, uint64_t timestamp_ns, const uint8_t
   frame[0] = static_cast<char>(kMessageDataOpcode);
   std::memcpy(frame.data() + 5, &timestamp_ns, 8);
   if (size > 0) std::memcpy(frame.data() + 13, data, size);
-  std::lock_guard lock(s.mutex);
-  for (auto& [hdl, client] : s.clients) {
-    for (const auto& [sub, channel] : client.subscriptions) {
-      if (channel != channel_id) continue;
-      // The bound: what this client has not yet taken off its socket. Over it, drop, never wait.
-      if (client.connection->get_buffered_amount() + frame.size() > s.options.client_buffer_bytes) {
-        ++s.dropped;
-        continue;
+  bool queued = false;
+  {
+    std::lock_guard lock(s.mutex);
+    for (auto& [hdl, client] : s.clients) {
+      for (const auto& [sub, channel] : client.subscriptions) {
+        if (channel != channel_id) continue;
+        // The bound: this client's queue. Over it, drop for this client, never wait.
+        if (client.queued_bytes + frame.size() > s.options.client_buffer_bytes) {
+          ++s.dropped;
+          continue;
+        }
+        std::memcpy(frame.data() + 1, &sub, 4);
+        client.queue.push_back(frame);
+        client.queued_bytes += frame.size();
+        queued = true;
       }
-      std::memcpy(frame.data() + 1, &sub, 4);
-      if (client.connection->send(frame, websocketpp::frame::opcode::binary)) ++s.dropped;
-      else ++s.sent;
     }
   }
+  if (queued) s.post_drain();
 }
 
 WsServerCounts WsServer::counts() const {

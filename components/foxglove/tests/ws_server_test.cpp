@@ -194,9 +194,10 @@ TEST(WsServer, ASlowViewerLosesMessagesAndNeverSlowsPublish) {
   const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   const auto counts = server.counts();
   EXPECT_GT(counts.messages_dropped, static_cast<uint64_t>(frames / 2));
-  EXPECT_EQ(counts.messages_sent + counts.messages_dropped, static_cast<uint64_t>(frames));
-  // 400 x 256 KiB copied once each: milliseconds; waiting for the viewer would never end.
-  EXPECT_LT(seconds, 2.0);
+  EXPECT_LE(counts.messages_sent + counts.messages_dropped, static_cast<uint64_t>(frames));  // the rest still queued
+  // 400 x 256 KiB copied once each: milliseconds (2 s under TSan on a loaded machine); waiting for
+  // the viewer, who never reads, would never end.
+  EXPECT_LT(seconds, 10.0);
 }
 
 TEST(WsServer, PortInUseAndBadAddressAreClearErrors) {

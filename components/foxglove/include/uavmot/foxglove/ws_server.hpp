@@ -3,8 +3,9 @@
 // github.com/foxglove/ws-protocol): advertises channels, takes subscriptions, sends each
 // subscriber the messages of its channels (binary opcode 1). Any number of clients.
 // publish() never waits for the network, so a slow viewer cannot slow its caller: each client
-// has a bounded send queue (`client_buffer_bytes` of websocketpp's outgoing buffer); a message
-// that does not fit is dropped for that client only, and counted. One thread runs the network.
+// has a bounded queue (`client_buffer_bytes`) that the network thread empties into its socket
+// (at most 1 MiB in websocketpp's buffer at a time); a message that does not fit is dropped for
+// that client only, and counted. One thread runs the network and alone touches the connections.
 // No DDS, no uavmot types: `uavmot foxglove` feeds it.
 
 #include <cstddef>
@@ -32,7 +33,7 @@ struct WsServerOptions {
 struct WsServerCounts {
   uint64_t clients_seen = 0;     // connections accepted since start
   uint64_t clients = 0;          // connected now
-  uint64_t messages_sent = 0;    // queued to a client's socket
+  uint64_t messages_sent = 0;    // handed to a client's socket
   uint64_t messages_dropped = 0; // not sent: that client's queue was full
 };
 
