@@ -11,6 +11,8 @@ packages=(
   libopencv-dev libeigen3-dev libceres-dev ffmpeg
   # configuration, CLI, logging, JSON, compression
   libyaml-cpp-dev libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libzstd-dev liblz4-dev
+  # the Foxglove WebSocket bridge (uavmot foxglove): websocketpp on standalone asio
+  libwebsocketpp-dev libasio-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # fuzzing (tools/fuzz.sh): clang 14 with libFuzzer and the sanitizer runtimes; llvm-symbolizer for

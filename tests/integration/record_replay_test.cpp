@@ -10,6 +10,7 @@
 #include <fstream>
 #include <map>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -20,6 +21,7 @@
 #include "child_process.hpp"
 #include "uavmot/mcap/reader.hpp"
 #include "uavmot/record/cdr_payload.hpp"
+#include "uavmot/record/topic_catalog.hpp"
 #include "uavmot/record/typed_topic.hpp"
 #include "uavmot/source/frame_source.hpp"
 
@@ -44,8 +46,13 @@ std::map<std::string, std::vector<int64_t>> frame_indices(const std::string& fil
   mcap::Reader reader;
   reader.open(file);
   std::map<std::string, std::vector<int64_t>> out;
-  for (const auto& [id, channel] : reader.channels()) out[channel.topic];
-  auto cursor = reader.messages();
+  // uavmot's own topics; the Foxglove-schema channels beside them are checked by foxglove_recording_js.
+  std::set<std::string> topics;
+  for (const auto& [id, channel] : reader.channels()) {
+    if (record::find_topic(channel.topic)) topics.insert(channel.topic);
+  }
+  for (const auto& topic : topics) out[topic];
+  auto cursor = reader.messages({.topics = topics});
   mcap::MessageView m;
   try {
     while (cursor.next(m)) {

@@ -14,7 +14,8 @@ namespace uavmot::mcap {
 
 namespace {
 
-void append_flattened(const std::filesystem::path& file, std::set<std::filesystem::path>& seen, std::string& out) {
+void append_flattened(const std::filesystem::path& file, const std::vector<std::string>& include_dirs,
+                      std::set<std::filesystem::path>& seen, std::string& out) {
   const std::filesystem::path canonical = std::filesystem::weakly_canonical(file);
   if (!seen.insert(canonical).second) return;
   std::ifstream in(file);
@@ -26,11 +27,14 @@ void append_flattened(const std::filesystem::path& file, std::set<std::filesyste
     ++number;
     std::smatch match;
     if (std::regex_match(line, match, include_line)) {
-      const std::filesystem::path included = file.parent_path() / match[1].str();
+      std::filesystem::path included = file.parent_path() / match[1].str();
+      for (auto dir = include_dirs.begin(); !std::filesystem::exists(included) && dir != include_dirs.end(); ++dir) {
+        included = std::filesystem::path(*dir) / match[1].str();
+      }
       if (!std::filesystem::exists(included)) {
         throw InputError(fmt::format("{}:{}: included IDL file {} not found", file.string(), number, included.string()));
       }
-      append_flattened(included, seen, out);
+      append_flattened(included, include_dirs, seen, out);
       continue;
     }
     out += line;
@@ -40,10 +44,10 @@ void append_flattened(const std::filesystem::path& file, std::set<std::filesyste
 
 }  // namespace
 
-std::string flatten_idl(const std::string& path) {
+std::string flatten_idl(const std::string& path, const std::vector<std::string>& include_dirs) {
   std::set<std::filesystem::path> seen;
   std::string out;
-  append_flattened(path, seen, out);
+  append_flattened(path, include_dirs, seen, out);
   return out;
 }
 

@@ -17,7 +17,9 @@
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/mcap/queued_writer.hpp"
 #include "uavmot/mcap/recover.hpp"
+#include "uavmot/foxglove/schemas.hpp"
 #include "uavmot/record/cdr_payload.hpp"
+#include "uavmot/record/foxglove_translation.hpp"
 #include "uavmot/record/qos_description.hpp"
 #include "uavmot/record/topic_catalog.hpp"
 #include "uavmot/record/typed_topic.hpp"
@@ -81,8 +83,9 @@ class TopicRecorder {
 template <class PubSubType>
 class TypedRecorder final : public TopicRecorder {
  public:
-  TypedRecorder(dds::Participant& participant, const record::TopicSpec& spec, const std::string& schema,
-                dds::DeliveryMode chain_mode, mcap::QueuedWriter& out)
+  // `foxglove`: also write the Foxglove-schema channel this topic feeds (null: none).
+  TypedRecorder(dds::Participant& participant, const record::TopicSpec& spec, const std::string& idl_dir,
+                dds::DeliveryMode chain_mode, mcap::QueuedWriter& out, const record::FoxgloveOptions* foxglove)
       : reader_(spec.topic_class == dds::TopicClass::Frames
                     // Room for many frames: a live writer keeps only its last 2, so a moment in
                     // which this thread gets no CPU must not fill the reader's queue.
@@ -90,8 +93,14 @@ class TypedRecorder final : public TopicRecorder {
                     : participant.make_reader<PubSubType>(spec.topic, spec.topic_class)),
         out_(out) {
     const auto qos = record::describe_qos(reader_->native()->get_qos());
-    channel_ = out_.add_channel(out_.add_schema(spec.type_name, "omgidl", schema), spec.topic, "cdr",
-                                record::channel_metadata(spec, chain_mode, qos));
+    channel_ = out_.add_channel(out_.add_schema(spec.type_name, "omgidl", record::schema_text(spec, idl_dir)), spec.topic,
+                                "cdr", record::channel_metadata(spec, chain_mode, qos));
+    if (const auto fc = foxglove ? record::foxglove_channel(spec.topic, *foxglove) : std::nullopt) {
+      foxglove_ = *foxglove;
+      foxglove_channel_ = out_.add_channel(
+          out_.add_schema(fc->schema_name, "omgidl", foxglove::schema_text(fc->schema_name, idl_dir)), fc->topic, "cdr",
+          {{"topic", fc->topic}, {"type", fc->schema_name}, {"source_topic", spec.topic}});
+    }
   }
 
   size_t drain() override {
@@ -101,6 +110,7 @@ class TypedRecorder final : public TopicRecorder {
       const uint64_t received = wall_ns();
       out_.write(channel_, ++sequence_, received, to_ns(info.source_timestamp), record::to_cdr(type_, sample_));
       note_frame(sample_);
+      if (foxglove_channel_) write_foxglove(received, to_ns(info.source_timestamp));
       ++n;
     }
     return n;
@@ -109,11 +119,23 @@ class TypedRecorder final : public TopicRecorder {
   const std::string& topic() const override { return reader_->topic(); }
 
  private:
+  void write_foxglove(uint64_t received, uint64_t published) {
+    std::string why;
+    if (auto bytes = record::to_foxglove(sample_, foxglove_, why)) {
+      out_.write(foxglove_channel_, ++foxglove_sequence_, received, published, std::move(*bytes));
+    } else if (!why.empty()) {
+      spdlog::warn("{}: no Foxglove message: {}", reader_->topic(), why);
+    }
+  }
+
   std::unique_ptr<dds::TopicReader<PubSubType>> reader_;
   mcap::QueuedWriter& out_;
   PubSubType type_;
   typename PubSubType::type sample_;  // reused: frames keep their pixel buffer between takes
   uint16_t channel_ = 0;
+  record::FoxgloveOptions foxglove_;
+  uint16_t foxglove_channel_ = 0;  // 0: none
+  uint32_t foxglove_sequence_ = 0;
 };
 
 std::string recovered_name(const std::string& input) {
@@ -138,6 +160,9 @@ int record_main(int argc, char** argv) {
   std::string out, compression = "zstd", recover_input;
   double duration_s = 0.0;
   uint64_t queue_mb = 256, chunk_kb = 4096;
+  bool with_foxglove = true;
+  std::string image_format = "jpeg";
+  record::FoxgloveOptions foxglove_options;
   return run_app(argc, argv, "record", "record uavmot topics to an MCAP file (CDR as on the wire)", [&](CLI::App& app) {
     app.add_option("--topics", topics, "topics or wildcard patterns to record (default: every uavmot topic)");
     app.add_option("--exclude", exclude, "topics or wildcard patterns not to record");
@@ -151,6 +176,18 @@ int record_main(int argc, char** argv) {
         ->check(CLI::PositiveNumber)
         ->capture_default_str();
     app.add_option("--chunk-kb", chunk_kb, "MCAP chunk size, KiB")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_flag("--foxglove,!--no-foxglove", with_foxglove,
+                 "also write Foxglove-schema channels: uavmot/foxglove/image, tracks, regions, features (docs/foxglove.md)")
+        ->capture_default_str();
+    app.add_option("--image-format", image_format, "uavmot/foxglove/image as jpeg (CompressedImage) or raw (RawImage)")
+        ->check(CLI::IsMember({"jpeg", "raw"}))
+        ->capture_default_str();
+    app.add_option("--jpeg-quality", foxglove_options.jpeg_quality, "JPEG quality of uavmot/foxglove/image")
+        ->check(CLI::Range(1, 100))
+        ->capture_default_str();
+    app.add_option("--gsd", foxglove_options.style.gsd_m, "ground sampling distance, m/px (> 0: track labels in km/h)")
+        ->check(CLI::NonNegativeNumber);
+    app.add_option("--fps", foxglove_options.style.fps, "frame rate, for km/h")->check(CLI::PositiveNumber)->capture_default_str();
     app.add_option("--recover", recover_input, "make a valid MCAP of a crashed recording (FILE.mcap.tmp) and exit");
     dds::add_node_options(app, node);
     return [&]() -> int {
@@ -159,6 +196,7 @@ int record_main(int argc, char** argv) {
       if (out.empty()) throw InvalidArgument("--out FILE.mcap is required (or --recover FILE)");
       const auto chosen = record::select_topics(topics, exclude);
       const std::string idl_dir = record::find_idl_dir();
+      foxglove_options.image_format = foxglove::parse_image_format(image_format);
       install_shutdown_handler();
 
       mcap::WriterOptions writer_options;
@@ -180,9 +218,9 @@ int record_main(int argc, char** argv) {
       dds::Participant participant(reader_options);
       std::vector<std::unique_ptr<TopicRecorder>> recorders;
       for (const auto& spec : chosen) {
-        const std::string schema = record::schema_text(spec, idl_dir);
         recorders.push_back(record::with_topic_type(spec.topic, [&]<class P>() -> std::unique_ptr<TopicRecorder> {
-          return std::make_unique<TypedRecorder<P>>(participant, spec, schema, node.dds.mode, writer);
+          return std::make_unique<TypedRecorder<P>>(participant, spec, idl_dir, node.dds.mode, writer,
+                                                    with_foxglove ? &foxglove_options : nullptr);
         }));
       }
       std::string command_line;

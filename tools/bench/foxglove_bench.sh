@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# The bridge-overhead figures of docs/benchmarks/foxglove.md: the chain (bringup/local.yaml) on a
+# simulated `paper` sequence (1024x768, 25 fps, 250 frames) with no bridge, then with
+# `uavmot foxglove` serving 0, 1 and 4 viewers (tests/foxglove_js/bench_viewer.mjs: subscribed
+# to every channel, counting, not decoding). Per configuration and run:
+#   live:     uavmot-bench-live (mode=live): end-to-end latency median / p99, track lists, drops;
+#   lossless: `uavmot launch` (mode=lossless) wall time -> frames per second.
+#   bash tools/bench/foxglove_bench.sh [OUT] [RUNS] [VIEWER ARGS...]   (OUT default out/foxglove_bench, RUNS 2;
+#   VIEWER ARGS e.g. `--prefix uavmot/foxglove/`: viewers take only the Foxglove channels;
+#   DDS domain $UAVMOT_BENCH_DOMAIN, default 64; needs build/bin and tests/foxglove_js's packages)
+set -euo pipefail
+cd "$(dirname "$0")/../.."
+root=$(pwd)
+out=${1:-out/foxglove_bench}
+runs=${2:-2}
+viewer_args=("${@:3}")
+domain=${UAVMOT_BENCH_DOMAIN:-64}
+bin=$root/build/bin
+js=$root/tests/foxglove_js
+source "$root/tests/support/node_packages.sh"
+require_tools foxglove_bench node npm
+install_node_packages "$js"
+mkdir -p "$out"
+seq=$out/paper
+[ -f "$seq/seqinfo.ini" ] || "$bin/uavmot" sim --preset paper --seed 1 --frames 250 --out "$seq" --quiet
+gsd=$(sed -n 's/^gsd=//p' "$seq/seqinfo.ini")
+echo "date: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load average: $(cut -d' ' -f1-3 /proc/loadavg)"
+printf '%-8s %3s | %-11s %-9s %-8s %-12s | %-12s | %s\n' config run "live lists" "median" "p99" "drops s/m/s/t" "lossless fps" "bridge"
+for run in $(seq "$runs"); do
+  for config in none 0 1 4; do
+    tag=$config-$run
+    rm -f "$out/done-$tag" "$out"/ready-$tag-*
+    pids=()
+    if [[ $config != none ]]; then
+      "$bin/uavmot-foxglove" --port 0 --domain "$domain" --transport local --gsd "$gsd" --fps 25 >"$out/bridge-$tag.log" 2>&1 &
+      bridge=$!
+      for _ in $(seq 100); do grep -q serving "$out/bridge-$tag.log" && break; sleep 0.1; done
+      port=$(sed -n 's/.*ws:\/\/127\.0\.0\.1:\([0-9]*\).*/\1/p' "$out/bridge-$tag.log" | head -1)
+      for v in $(seq "$config"); do
+        node "$js/bench_viewer.mjs" "ws://127.0.0.1:$port" --ready "$out/ready-$tag-$v" --done "$out/done-$tag" "${viewer_args[@]}" >"$out/viewer-$tag-$v.log" 2>&1 &
+        pids+=($!)
+      done
+      for v in $(seq "$config"); do
+        for _ in $(seq 100); do [[ -f "$out/ready-$tag-$v" ]] && break; sleep 0.1; done
+      done
+    fi
+    # A failed run is reported as such and the next one goes on (a shared machine kills things).
+    "$bin/uavmot-bench-live" --input "$seq" --out "$out/live-$tag" --json "$out/live-$tag.json" --domain "$domain" \
+      >"$out/live-$tag.txt" 2>"$out/live-$tag.log" || echo '{"failed": true}' >"$out/live-$tag.json"
+    start=$(date +%s.%N)
+    "$bin/uavmot" launch bringup/local.yaml --input "$seq" --out "$out/lossless-$tag" --set domain="$domain" >"$out/lossless-$tag.log" 2>&1 ||
+      start=failed
+    end=$(date +%s.%N)
+    touch "$out/done-$tag"
+    for p in "${pids[@]}"; do wait "$p"; done
+    bridge_line=-
+    if [[ $config != none ]]; then
+      kill -TERM "$bridge"
+      wait "$bridge" || true
+      bridge_line=$(grep -o '[0-9]* messages sent, [0-9]* dropped' "$out/bridge-$tag.log" | tail -1)
+    fi
+    python3 - "$out/live-$tag.json" "$start" "$end" "$config" "$run" "$bridge_line" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+fps = "failed" if sys.argv[2] == "failed" else f"{250 / (float(sys.argv[3]) - float(sys.argv[2])):.1f}"
+if j.get("failed"):
+    live = f'{"failed":<11} {"":<9} {"":<8} {"":<12}'
+else:
+    c = j["components"]
+    drops = "/".join(str(c.get(n, {}).get("dropped", "?")) for n in ["source", "motion", "segmentation", "tracking"])
+    live = f'{j["track_lists"]:<11} {j["latency_ms"]["median"]:<9.1f} {j["latency_ms"]["p99"]:<8.1f} {drops:<12}'
+print(f'{sys.argv[4]:<8} {sys.argv[5]:>3} | {live} | {fps:<12} | {sys.argv[6]}')
+PY
+  done
+done
+echo "load average after: $(cut -d' ' -f1-3 /proc/loadavg)"
