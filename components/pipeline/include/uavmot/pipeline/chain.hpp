@@ -46,6 +46,14 @@ class Chain {
   Chain& operator=(const Chain&) = delete;
 
   ChainOutput process(const Frame& frame);
+
+  // process() in two halves, for the pipelined run (chain_runner.hpp): motion of frame k+1 may
+  // run on one thread while segmentation and tracking of frame k run on another. Each half keeps
+  // its own state and must get the frames in order; each half is called from one thread at a time.
+  MotionEstimate estimate_motion(const Frame& frame);
+  ChainOutput segment_and_track(const Frame& frame, MotionEstimate motion);
+
+  // Read after the threads calling the halves have finished.
   const StageTimes& stage_times() const { return times_; }
 
  private:
