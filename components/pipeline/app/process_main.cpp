@@ -35,7 +35,7 @@ int process_main(int argc, char** argv) {
   std::string out_dir, config_file, method, video_file, log_level = "info";
   double gsd_m = 0.0, fps = 0.0;
   bool quiet = false, from_recording = false;
-  int threads = 2;
+  int threads = 2, opencv_threads = 0;
 
   return run_app(argc, argv, "process", "run the whole chain in one process and write tracks", [&](CLI::App& app) {
     app.add_option("input", input.path, "video file, image folder, MOTChallenge sequence folder or recording (.mcap)")
@@ -58,6 +58,8 @@ int process_main(int argc, char** argv) {
                    "tracking of frame k overlap on their own threads (same results, byte for byte)")
         ->check(CLI::Range(1, 2))
         ->capture_default_str();
+    app.add_option("--opencv-threads", opencv_threads, "OpenCV's own pool during the run (default: --threads)")
+        ->check(CLI::Range(1, 64));
     app.add_flag("--quiet", quiet, "no progress line");
     app.add_option("--log-level", log_level)->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
 
@@ -119,6 +121,7 @@ int process_main(int argc, char** argv) {
       int64_t done = 0;
       pipeline::ChainRunOptions run;
       run.threads = threads;
+      run.opencv_threads = opencv_threads;
       run.stop = [] { return shutdown_requested(); };
       try {
         pipeline::run_chain(std::move(frames), chain, run, [&](const Frame& frame, const pipeline::ChainOutput& out) {

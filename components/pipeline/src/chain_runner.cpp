@@ -1,5 +1,7 @@
 #include "uavmot/pipeline/chain_runner.hpp"
 
+#include <pthread.h>
+
 #include <thread>
 
 #include <opencv2/core/utility.hpp>
@@ -33,6 +35,7 @@ int64_t run_pipelined(std::unique_ptr<source::FrameSource> frames, Chain& chain,
   source::FramePrefetcher decoded(std::move(frames), options.queue_depth);
   StageQueue<MotionDone> moved(options.queue_depth);
   std::thread motion_thread([&] {
+    pthread_setname_np(pthread_self(), "uavmot-motion");  // for top -H and perf
     try {
       Frame frame;
       while (!stopped(options) && decoded.next(frame)) {
@@ -61,13 +64,13 @@ int64_t run_pipelined(std::unique_ptr<source::FrameSource> frames, Chain& chain,
   return done;
 }
 
-// OpenCV's pool off for the run, its previous size restored after (also on an exception).
-class OpenCvThreadsOff {
+// OpenCV's pool size for the run, the previous size restored after (also on an exception).
+class OpenCvThreads {
  public:
-  OpenCvThreadsOff() : previous_(cv::getNumThreads()) { cv::setNumThreads(1); }
-  ~OpenCvThreadsOff() { cv::setNumThreads(previous_); }
-  OpenCvThreadsOff(const OpenCvThreadsOff&) = delete;
-  OpenCvThreadsOff& operator=(const OpenCvThreadsOff&) = delete;
+  explicit OpenCvThreads(int threads) : previous_(cv::getNumThreads()) { cv::setNumThreads(threads); }
+  ~OpenCvThreads() { cv::setNumThreads(previous_); }
+  OpenCvThreads(const OpenCvThreads&) = delete;
+  OpenCvThreads& operator=(const OpenCvThreads&) = delete;
 
  private:
   int previous_;
@@ -80,7 +83,7 @@ int64_t run_chain(std::unique_ptr<source::FrameSource> frames, Chain& chain, con
   if (options.threads != 1 && options.threads != 2) {
     throw InvalidArgument("chain threads must be 1 or 2, not " + std::to_string(options.threads));
   }
-  const OpenCvThreadsOff opencv_threads_off;
+  const OpenCvThreads opencv_threads(options.opencv_threads > 0 ? options.opencv_threads : options.threads);
   if (options.threads == 1) return run_sequential(*frames, chain, options, consume);
   return run_pipelined(std::move(frames), chain, options, consume);
 }

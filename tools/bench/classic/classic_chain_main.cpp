@@ -32,6 +32,8 @@ int classic_main(int argc, char** argv) {
     app.add_option("--threads", threads, "OpenCV threads (cv::setNumThreads)")->check(CLI::Range(1, 64))->capture_default_str();
     app.add_option("--count", input.max_frames, "number of frames (0 = all)")->check(CLI::NonNegativeNumber);
     app.add_option("--threshold", detection.threshold, "grey-level difference threshold")->capture_default_str();
+    app.add_option("--both", detection.both_differences, "1: AND of the differences with frames k-1 and k+1; 0: OR")
+        ->capture_default_str();
     app.add_option("--min-area", detection.min_area_px, "smallest component, px")->capture_default_str();
     app.add_option("--max-area", detection.max_area_px, "largest component, px")->capture_default_str();
     app.add_option("--close", detection.close_px, "closing square, px")->capture_default_str();

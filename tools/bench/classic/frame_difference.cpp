@@ -38,7 +38,8 @@ cv::Mat FrameDifferenceDetector::moving_mask(const cv::Mat& centre, const cv::Ma
     cv::threshold(diff, mask, options_.threshold, 255, cv::THRESH_BINARY);
     return mask & valid_warped;
   };
-  cv::Mat mask = changed(before, before_to_centre) & changed(after, centre_to_after.inv());
+  const cv::Mat to_before = changed(before, before_to_centre), to_after = changed(after, centre_to_after.inv());
+  cv::Mat mask = options_.both_differences ? (to_before & to_after) : (to_before | to_after);
   const auto square = [](int px) { return cv::getStructuringElement(cv::MORPH_RECT, cv::Size(px, px)); };
   cv::morphologyEx(mask, mask, cv::MORPH_CLOSE, square(options_.close_px));
   cv::morphologyEx(mask, mask, cv::MORPH_OPEN, square(options_.open_px));

@@ -2,9 +2,11 @@
 // The classic detector uavmot is compared with: per frame pair, goodFeaturesToTrack +
 // calcOpticalFlowPyrLK + findHomography (RANSAC) for the camera motion, then motion-compensated
 // three-frame differencing: frame k-1 and frame k+1 are warped onto frame k, both absolute
-// differences are thresholded, their AND (a mover is where it is in frame k, not where it was or
-// will be) is cleaned by morphology, and its connected components are the detections of frame k.
-// Detections of frame k are therefore ready one frame later.
+// differences are thresholded, their union (or, with both_differences, their AND: only where the
+// mover is in frame k) is cleaned by morphology, and its connected components are the detections
+// of frame k, ready one frame later. The defaults are the best of a small grid on 40 frames of
+// `uavmot sim --preset hd --seed 1` (docs/benchmarks/process.md): the AND loses most slow
+// vehicles, whose two differences overlap only at their ends.
 
 #include <optional>
 #include <vector>
@@ -20,10 +22,11 @@ struct DifferenceOptions {
   int lk_window_px = 21;
   int lk_levels = 3;
   double ransac_px = 3.0;
-  int threshold = 15;              // grey levels of |I_k - warped I_k±1|
+  int threshold = 10;              // grey levels of |I_k - warped I_k±1|
+  bool both_differences = false;   // AND of the two differences (else OR: where it was or will be too)
   int close_px = 5;                // closing joins a vehicle's parts (roof, windscreen, rim)
   int open_px = 3;                 // opening removes noise specks
-  int min_area_px = 25;            // smaller components are noise
+  int min_area_px = 15;            // smaller components are noise
   int max_area_px = 4000;          // larger ones are misregistration
 };
 

@@ -27,6 +27,7 @@ namespace uavmot::pipeline {
 struct ChainRunOptions {
   int threads = 2;          // 1 = sequential, 2 = pipelined (above)
   size_t queue_depth = 3;   // frames waiting between two stages (bounds memory: 4K gray is 8 MB)
+  int opencv_threads = 0;   // cv::setNumThreads during the run; 0 = `threads` (restored after)
   std::function<bool()> stop;  // asked before each frame; true ends the run early (Ctrl-C)
 };
 
