@@ -38,9 +38,11 @@ double seconds_since(Clock::time_point t) { return std::chrono::duration<double>
 
 ChainOutput Chain::process(const Frame& frame) { return segment_and_track(frame, estimate_motion(frame)); }
 
-MotionEstimate Chain::estimate_motion(const Frame& frame) {
+motion::PreparedFrame Chain::prepare_motion(const Frame& frame) const { return layers_->motion.prepare(frame); }
+
+MotionEstimate Chain::estimate_motion(const Frame& frame, motion::PreparedFrame prepared) {
   const auto start = Clock::now();
-  MotionEstimate motion = layers_->motion.process(frame);
+  MotionEstimate motion = layers_->motion.process(frame, std::move(prepared));
   times_.motion_s += seconds_since(start);  // only this half writes motion_s
   return motion;
 }

@@ -2,13 +2,13 @@
 
 #include <pthread.h>
 
+#include <functional>
 #include <thread>
 
 #include <opencv2/core/utility.hpp>
 
 #include "stage_queue.hpp"
 #include "uavmot/core/error.hpp"
-#include "uavmot/source/frame_prefetcher.hpp"
 
 namespace uavmot::pipeline {
 namespace {
@@ -25,28 +25,64 @@ int64_t run_sequential(source::FrameSource& frames, Chain& chain, const ChainRun
   return done;
 }
 
+struct Decoded {
+  Frame frame;
+  motion::PreparedFrame prepared;
+};
+
 struct MotionDone {
   Frame frame;
   MotionEstimate motion;
 };
 
-int64_t run_pipelined(std::unique_ptr<source::FrameSource> frames, Chain& chain, const ChainRunOptions& options,
-                      const FrameConsumer& consume) {
-  source::FramePrefetcher decoded(std::move(frames), options.queue_depth);
-  StageQueue<MotionDone> moved(options.queue_depth);
-  std::thread motion_thread([&] {
-    pthread_setname_np(pthread_self(), "uavmot-motion");  // for top -H and perf
+// Runs `body` on a thread named `name` (top -H, perf); `failed` gets what it throws.
+std::thread stage_thread(const char* name, std::function<void()> body, std::function<void(std::exception_ptr)> failed) {
+  return std::thread([name, body = std::move(body), failed = std::move(failed)] {
+    pthread_setname_np(pthread_self(), name);
     try {
-      Frame frame;
-      while (!stopped(options) && decoded.next(frame)) {
-        MotionEstimate motion = chain.estimate_motion(frame);
-        if (!moved.push({std::move(frame), std::move(motion)})) break;  // the consumer stopped
-      }
-      moved.close();
+      body();
     } catch (...) {
-      moved.close(std::current_exception());
+      failed(std::current_exception());
     }
   });
+}
+
+int64_t run_pipelined(std::unique_ptr<source::FrameSource> frames, Chain& chain, const ChainRunOptions& options,
+                      const FrameConsumer& consume) {
+  StageQueue<Decoded> decoded(options.queue_depth);
+  StageQueue<MotionDone> moved(options.queue_depth);
+  std::thread decode_thread = stage_thread(
+      "uavmot-decode",
+      [&] {
+        Frame frame;
+        while (!stopped(options) && frames->next(frame)) {
+          motion::PreparedFrame prepared = chain.prepare_motion(frame);
+          if (!decoded.push({std::move(frame), std::move(prepared)})) return;  // motion stopped
+        }
+        decoded.close();
+      },
+      [&](std::exception_ptr e) { decoded.close(e); });
+  std::thread motion_thread = stage_thread(
+      "uavmot-motion",
+      [&] {
+        Decoded item;
+        while (!stopped(options) && decoded.pop(item)) {
+          MotionEstimate motion = chain.estimate_motion(item.frame, std::move(item.prepared));
+          if (!moved.push({std::move(item.frame), std::move(motion)})) break;  // the consumer stopped
+        }
+        decoded.cancel();
+        moved.close();
+      },
+      [&](std::exception_ptr e) {
+        decoded.cancel();
+        moved.close(e);
+      });
+  // Whatever ends the run, the stages are stopped and joined before run_chain returns or throws.
+  auto join = [&] {
+    moved.cancel();
+    motion_thread.join();  // it cancels `decoded` on its way out, which stops the decoder
+    decode_thread.join();
+  };
   int64_t done = 0;
   try {
     MotionDone item;
@@ -55,12 +91,10 @@ int64_t run_pipelined(std::unique_ptr<source::FrameSource> frames, Chain& chain,
       ++done;
     }
   } catch (...) {
-    moved.cancel();
-    motion_thread.join();
+    join();
     throw;
   }
-  moved.cancel();
-  motion_thread.join();
+  join();
   return done;
 }
 
