@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <stdexcept>
 
 #include <opencv2/core.hpp>
@@ -105,9 +106,9 @@ TEST_P(ChainRunner, ConsumerFailureStopsTheOtherStages) {
 
 TEST_P(ChainRunner, StopEndsTheRunEarly) {
   Chain chain{ChainOptions{}};
-  int64_t consumed = 0;
+  std::atomic<int64_t> consumed{0};  // stop() is asked from every stage's thread
   ChainRunOptions o = with_threads(GetParam());
-  o.stop = [&] { return consumed >= 4; };
+  o.stop = [&] { return consumed.load() >= 4; };
   EXPECT_EQ(run_chain(std::make_unique<SyntheticSource>(200), chain, o, [&](const Frame&, const ChainOutput&) { ++consumed; }), 4);
 }
 
