@@ -5,7 +5,7 @@ Each area keeps its own page (written by whoever measured it, with the command a
 this puts every figure on one page, in the order of the chain."""
 import pathlib
 
-ORDER = ["frame_hop", "sim", "motion", "segmentation", "tracking", "real_video", "live", "mcap", "record", "foxglove", "airground", "soak"]
+ORDER = ["frame_hop", "sim", "motion", "segmentation", "tracking", "process", "real_video", "live", "mcap", "record", "foxglove", "airground", "soak"]
 root = pathlib.Path(__file__).resolve().parent.parent / "docs"
 pages = {p.stem: p for p in (root / "benchmarks").glob("*.md")}
 names = [n for n in ORDER if n in pages] + sorted(n for n in pages if n not in ORDER)

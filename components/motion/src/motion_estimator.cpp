@@ -41,6 +41,15 @@ TrackedFeature to_output(const LiveFeature& f) {
 
 }  // namespace
 
+struct PreparedFrame::Data {
+  cv::Mat gray;
+  Pyramid pyramid;
+};
+PreparedFrame::PreparedFrame() = default;
+PreparedFrame::~PreparedFrame() = default;
+PreparedFrame::PreparedFrame(PreparedFrame&&) noexcept = default;
+PreparedFrame& PreparedFrame::operator=(PreparedFrame&&) noexcept = default;
+
 class MotionEstimator::Impl {
  public:
   Impl(MotionOptions options, SceneInfo scene)
@@ -56,7 +65,8 @@ class MotionEstimator::Impl {
     }
   }
 
-  MotionEstimate process(const Frame& frame);
+  // `prepared`: the frame's grey image and pyramid built ahead (the pyramid is swapped in), or null.
+  MotionEstimate process(const Frame& frame, PreparedFrame::Data* prepared);
   void reset() {
     previous_ = Pyramid{};
     features_.clear();
@@ -86,23 +96,37 @@ class MotionEstimator::Impl {
   cv::Mat gray_;
 };
 
-MotionEstimate MotionEstimator::Impl::process(const Frame& frame) {
-  const std::string where = "frame " + std::to_string(frame.index) + " of stream '" + frame.stream_id + "'";
-  if (frame.image.empty()) throw InputError(where + ": empty image");
+namespace {
+
+// Why process() refuses `frame`, or an empty string.
+std::string frame_problem(const Frame& frame, const MotionOptions& o) {
+  if (frame.image.empty()) return "empty image";
   if (frame.image.type() != CV_8UC1 && frame.image.type() != CV_8UC3) {
-    throw InputError(where + ": expected mono8 (CV_8UC1) or bgr8 (CV_8UC3), got OpenCV type " +
-                     std::to_string(frame.image.type()));
+    return "expected mono8 (CV_8UC1) or bgr8 (CV_8UC3), got OpenCV type " + std::to_string(frame.image.type());
   }
-  const int min_side = 2 * options_.border_px + options_.lk_window_px;
+  const int min_side = 2 * o.border_px + o.lk_window_px;
   if (frame.image.cols < min_side || frame.image.rows < min_side) {
-    throw InputError(where + ": image " + std::to_string(frame.image.cols) + "x" + std::to_string(frame.image.rows) +
-                     " is smaller than " + std::to_string(min_side) + " px");
+    return "image " + std::to_string(frame.image.cols) + "x" + std::to_string(frame.image.rows) + " is smaller than " +
+           std::to_string(min_side) + " px";
   }
-  if (frame.image.type() == CV_8UC3) {
-    cv::cvtColor(frame.image, gray_, cv::COLOR_BGR2GRAY);
-  } else {
-    gray_ = frame.image;
+  return {};
+}
+
+cv::Mat gray_of(const Frame& frame) {
+  if (frame.image.type() != CV_8UC3) return frame.image;
+  cv::Mat gray;
+  cv::cvtColor(frame.image, gray, cv::COLOR_BGR2GRAY);
+  return gray;
+}
+
+}  // namespace
+
+MotionEstimate MotionEstimator::Impl::process(const Frame& frame, PreparedFrame::Data* prepared) {
+  if (const std::string problem = frame_problem(frame, options_); !problem.empty()) {
+    throw InputError("frame " + std::to_string(frame.index) + " of stream '" + frame.stream_id + "': " + problem);
   }
+  const bool use_prepared = prepared != nullptr && !prepared->pyramid.empty() && prepared->pyramid.size == frame.image.size();
+  gray_ = use_prepared ? prepared->gray : gray_of(frame);
 
   MotionEstimate out;
   out.stream_id = frame.stream_id;
@@ -111,7 +135,11 @@ MotionEstimate MotionEstimator::Impl::process(const Frame& frame) {
   out.image_width = frame.image.cols;
   out.image_height = frame.image.rows;
   Pyramid& current = spare_;  // the buffers of the frame before the previous one
-  build_pyramid(gray_, options_, current);
+  if (use_prepared) {
+    std::swap(current, prepared->pyramid);  // the old buffers leave with `prepared`
+  } else {
+    build_pyramid(gray_, options_, current);
+  }
 
   const bool valid = track_and_estimate(current, out);
   if (!valid) features_.clear();  // nothing links this frame to the last: every feature restarts
@@ -272,7 +300,20 @@ MotionEstimator::~MotionEstimator() = default;
 MotionEstimator::MotionEstimator(MotionEstimator&&) noexcept = default;
 MotionEstimator& MotionEstimator::operator=(MotionEstimator&&) noexcept = default;
 
-MotionEstimate MotionEstimator::process(const Frame& frame) { return impl_->process(frame); }
+MotionEstimate MotionEstimator::process(const Frame& frame) { return impl_->process(frame, nullptr); }
+
+PreparedFrame MotionEstimator::prepare(const Frame& frame) const {
+  PreparedFrame prepared;
+  if (!frame_problem(frame, impl_->options()).empty()) return prepared;  // process() says why
+  prepared.data_ = std::make_unique<PreparedFrame::Data>();
+  prepared.data_->gray = gray_of(frame);
+  build_pyramid(prepared.data_->gray, impl_->options(), prepared.data_->pyramid);
+  return prepared;
+}
+
+MotionEstimate MotionEstimator::process(const Frame& frame, PreparedFrame prepared) {
+  return impl_->process(frame, prepared.data_.get());
+}
 void MotionEstimator::reset() { impl_->reset(); }
 const MotionOptions& MotionEstimator::options() const { return impl_->options(); }
 

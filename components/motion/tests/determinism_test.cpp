@@ -104,5 +104,21 @@ TEST(Determinism, CallerMayReuseItsFrameBuffer) {
   }
 }
 
+TEST(Determinism, PreparedFramesGiveTheSameResult) {
+  // The pipelined chain builds each frame's pyramid ahead, on another thread (prepare), in mono8
+  // and bgr8; a frame prepare() leaves unprepared is refused by process() as without it.
+  const auto sequence = moving_scene();
+  MotionEstimator plain(MotionOptions{}), prepared(MotionOptions{});
+  for (int k = 1; k <= 12; ++k) {
+    cv::Mat image = sequence.frame(k);
+    if (k % 3 == 0) cv::cvtColor(image, image, cv::COLOR_GRAY2BGR);
+    const Frame frame = test::make_frame(image, k);
+    PreparedFrame ahead = prepared.prepare(frame);
+    expect_identical(plain.process(frame), prepared.process(frame, std::move(ahead)));
+  }
+  const Frame empty = test::make_frame(cv::Mat(), 13);
+  EXPECT_THROW(prepared.process(empty, prepared.prepare(empty)), InputError);
+}
+
 }  // namespace
 }  // namespace uavmot::motion

@@ -19,6 +19,7 @@
 #include "uavmot/geo/chain_ground.hpp"
 #include "uavmot/geo/track_map.hpp"
 #include "uavmot/pipeline/chain.hpp"
+#include "uavmot/pipeline/chain_runner.hpp"
 #include "uavmot/pipeline/progress.hpp"
 #include "uavmot/source/frame_source.hpp"
 #include "uavmot/view/overlay.hpp"
@@ -34,6 +35,7 @@ int process_main(int argc, char** argv) {
   std::string out_dir, config_file, method, video_file, log_level = "info";
   double gsd_m = 0.0, fps = 0.0;
   bool quiet = false, from_recording = false;
+  int threads = 2, opencv_threads = 0;
 
   return run_app(argc, argv, "process", "run the whole chain in one process and write tracks", [&](CLI::App& app) {
     app.add_option("input", input.path, "video file, image folder, MOTChallenge sequence folder or recording (.mcap)")
@@ -51,6 +53,13 @@ int process_main(int argc, char** argv) {
     app.add_option("--count", input.max_frames, "number of frames (0 = all)")->check(CLI::NonNegativeNumber);
     app.add_option("--stream-id", input.stream_id, "stream id written into every result")->capture_default_str();
     app.add_option("--video", video_file, "also write the annotated video (paper Fig. 6) to this mp4 file");
+    app.add_option("--threads", threads,
+                   "1: one frame after another on one thread; 2: decoding, motion of frame k+1 and segmentation + "
+                   "tracking of frame k overlap on their own threads (same results, byte for byte)")
+        ->check(CLI::Range(1, 2))
+        ->capture_default_str();
+    app.add_option("--opencv-threads", opencv_threads, "OpenCV's own pool during the run (default: --threads)")
+        ->check(CLI::Range(1, 64));
     app.add_flag("--quiet", quiet, "no progress line");
     app.add_option("--log-level", log_level)->check(CLI::IsMember({"trace", "debug", "info", "warn", "error", "off"}));
 
@@ -68,7 +77,7 @@ int process_main(int argc, char** argv) {
       const auto clif_pos = pipeline::read_clif_pos_for(input.path);
       if (fps <= 0 && clif_pos && clif_pos->fps()) input.fps_override = *clif_pos->fps();
       auto frames = source::open_frame_source(input);
-      const auto& info = frames->info();
+      const source::SourceInfo info = frames->info();  // a copy: run_chain takes the source
       options.scene.fps = fps > 0 ? fps : info.fps;
       if (input.fps_override > 0) spdlog::info("frame rate {:.3f} fps from the CLIF POS GPS times", info.fps);
       // The flight metadata of an MPEG-TS: geometry per frame, numbered as the chain numbers them.
@@ -109,18 +118,20 @@ int process_main(int argc, char** argv) {
       pipeline::Progress progress("process", info.frame_count, !quiet);
       const auto start = std::chrono::steady_clock::now();
       int exit_code = kExitOk;
-      Frame frame;
       int64_t done = 0;
+      pipeline::ChainRunOptions run;
+      run.threads = threads;
+      run.opencv_threads = opencv_threads;
+      run.stop = [] { return shutdown_requested(); };
       try {
-        while (!shutdown_requested() && frames->next(frame)) {
-          const auto out = chain.process(frame);
+        pipeline::run_chain(std::move(frames), chain, run, [&](const Frame& frame, const pipeline::ChainOutput& out) {
           writer.write_motion(out.motion);
           writer.write_segmentation(out.segmentation);
           writer.write_tracks(out.tracks);
           track_map.add(out.tracks);
           if (video) video->write(view::draw_overlay(frame.image, &out.motion, &out.segmentation, &out.tracks, overlay));
           progress.update(++done);
-        }
+        });
       } catch (const InputError& e) {
         // Everything processed so far is written below; the input itself is broken.
         progress.finish();

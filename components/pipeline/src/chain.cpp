@@ -31,14 +31,26 @@ struct Chain::Layers {
 Chain::Chain(const ChainOptions& options) : layers_(std::make_unique<Layers>(options)) {}
 Chain::~Chain() = default;
 
-ChainOutput Chain::process(const Frame& frame) {
-  using Clock = std::chrono::steady_clock;
-  auto seconds_since = [](Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); };
+namespace {
+using Clock = std::chrono::steady_clock;
+double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+}  // namespace
+
+ChainOutput Chain::process(const Frame& frame) { return segment_and_track(frame, estimate_motion(frame)); }
+
+motion::PreparedFrame Chain::prepare_motion(const Frame& frame) const { return layers_->motion.prepare(frame); }
+
+MotionEstimate Chain::estimate_motion(const Frame& frame, motion::PreparedFrame prepared) {
+  const auto start = Clock::now();
+  MotionEstimate motion = layers_->motion.process(frame, std::move(prepared));
+  times_.motion_s += seconds_since(start);  // only this half writes motion_s
+  return motion;
+}
+
+ChainOutput Chain::segment_and_track(const Frame& frame, MotionEstimate motion) {
   ChainOutput out;
+  out.motion = std::move(motion);
   auto start = Clock::now();
-  out.motion = layers_->motion.process(frame);
-  times_.motion_s += seconds_since(start);
-  start = Clock::now();
   out.segmentation = layers_->segmenter.process(frame, out.motion);
   times_.segmentation_s += seconds_since(start);
   start = Clock::now();

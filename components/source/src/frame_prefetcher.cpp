@@ -1,5 +1,7 @@
 #include "uavmot/source/frame_prefetcher.hpp"
 
+#include <pthread.h>
+
 #include <algorithm>
 
 namespace uavmot::source {
@@ -20,6 +22,7 @@ FramePrefetcher::~FramePrefetcher() {
 }
 
 void FramePrefetcher::run() {
+  pthread_setname_np(pthread_self(), "uavmot-decode");  // for top -H and perf
   int64_t next_index = 1;
   try {
     while (true) {

@@ -16,6 +16,20 @@
 
 namespace uavmot::motion {
 
+// A frame's image pyramid, built ahead by MotionEstimator::prepare (e.g. on a decoding thread).
+class PreparedFrame {
+ public:
+  PreparedFrame();
+  ~PreparedFrame();
+  PreparedFrame(PreparedFrame&&) noexcept;
+  PreparedFrame& operator=(PreparedFrame&&) noexcept;
+
+ private:
+  friend class MotionEstimator;
+  struct Data;
+  std::unique_ptr<Data> data_;
+};
+
 class MotionEstimator {
  public:
   // Throws uavmot::InputError for inconsistent options.
@@ -29,6 +43,13 @@ class MotionEstimator {
   // features) never throws: the estimate is flagged invalid with the identity homography, all
   // features restart, and the following frames recover.
   MotionEstimate process(const Frame& frame);
+
+  // The per-frame work that needs none of the estimator's state (the grey image's pyramid), so a
+  // pipelined chain can do it on another thread while process() works on the frame before.
+  // process(frame, prepare(frame)) gives the same bytes as process(frame). Reads only the
+  // options, so it may run beside process(); a frame process() would refuse is left unprepared.
+  PreparedFrame prepare(const Frame& frame) const;
+  MotionEstimate process(const Frame& frame, PreparedFrame prepared);
 
   // Forgets all features and the previous frame (e.g. when a stream restarts).
   void reset();

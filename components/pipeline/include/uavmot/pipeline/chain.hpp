@@ -8,6 +8,7 @@
 #include "uavmot/core/chain_types.hpp"
 #include "uavmot/core/scene_info.hpp"
 #include "uavmot/core/yaml_config.hpp"
+#include "uavmot/motion/motion_estimator.hpp"
 #include "uavmot/motion/motion_options.hpp"
 #include "uavmot/segmentation/segmentation_options.hpp"
 #include "uavmot/tracking/tracker_options.hpp"
@@ -46,6 +47,16 @@ class Chain {
   Chain& operator=(const Chain&) = delete;
 
   ChainOutput process(const Frame& frame);
+
+  // process() in three parts, for the pipelined run (chain_runner.hpp): the frame's pyramid on the
+  // decoding thread, motion of frame k+1 on one thread, segmentation and tracking of frame k on
+  // another. prepare_motion has no state; the other two keep their own and must get the frames in
+  // order, each from one thread at a time. Same bytes as process().
+  motion::PreparedFrame prepare_motion(const Frame& frame) const;
+  MotionEstimate estimate_motion(const Frame& frame, motion::PreparedFrame prepared = {});
+  ChainOutput segment_and_track(const Frame& frame, MotionEstimate motion);
+
+  // Read after the threads calling the halves have finished.
   const StageTimes& stage_times() const { return times_; }
 
  private:
