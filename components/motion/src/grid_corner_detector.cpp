@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 
-#include <opencv2/core/utility.hpp>
 #include <opencv2/imgproc.hpp>
 
 namespace uavmot::motion {
@@ -127,29 +126,12 @@ std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const std::vector<
     to_search.emplace_back(around, index);
   }
   if (static_cast<int>(to_search.size()) > budget) std::stable_sort(to_search.begin(), to_search.end());
-  auto area_of = [&](int index) { return cv::Rect((index % cols) * cell, (index / cols) * cell, cell, cell) & usable; };
-  // A cell's candidates do not depend on the others, only the choice among them does: they are
-  // found ahead for a batch of cells on OpenCV's pool (the same values on any thread), then
-  // chosen from in order. A batch is no larger than the budget can use, so little is wasted.
-  std::vector<std::vector<Candidate>> found(to_search.size());
-  size_t ready = 0;
-  for (size_t n = 0; n < to_search.size(); ++n) {
+  for (const auto& [around, index] : to_search) {
     if (budget <= 0) break;
-    const int index = to_search[n].second;
-    const cv::Rect area = area_of(index);
+    const int cx = index % cols, cy = index / cols;
+    const cv::Rect area = cv::Rect(cx * cell, cy * cell, cell, cell) & usable;
     if (area.width <= 0 || area.height <= 0) continue;
-    if (n >= ready) {
-      const size_t batch = std::max<size_t>(16, static_cast<size_t>(budget) / std::max(1, o.features_per_cell));
-      const size_t end = std::min(to_search.size(), n + batch);
-      cv::parallel_for_(cv::Range(static_cast<int>(n), static_cast<int>(end)), [&](const cv::Range& r) {
-        for (int i = r.start; i < r.end; ++i) {
-          const cv::Rect a = area_of(to_search[static_cast<size_t>(i)].second);
-          if (a.width > 0 && a.height > 0) found[static_cast<size_t>(i)] = cell_candidates(gray, a, o);
-        }
-      });
-      ready = end;
-    }
-    const std::vector<Candidate>& candidates = found[n];
+    const auto candidates = cell_candidates(gray, area, o);
     bool placed = false;
     for (const auto& c : candidates) {
       const cv::Point2f p(static_cast<float>(c.x), static_cast<float>(c.y));
@@ -166,7 +148,6 @@ std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const std::vector<
       const int wait = o.empty_cell_retry_frames;
       (*retry_at)[static_cast<size_t>(index)] = placed ? 0 : call + wait + (wait > 1 ? index % wait : 0);
     }
-    std::vector<Candidate>().swap(found[n]);
   }
   return added;
 }
