@@ -31,7 +31,6 @@ std::optional<ResultFile> read(const fs::path& path, const std::string* header) 
   ResultFile file;
   file.content.assign(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
   size_t pos = 0;
-  const std::string name = path.filename().string();
   if (header) {
     const size_t eol = file.content.find('\n');
     if (eol == std::string::npos || file.content.compare(0, eol, *header) != 0 || eol != header->size()) {
