@@ -4,11 +4,14 @@
 # seed set with the mean and the worst seed of each figure. Tuning uses seeds 1-5 (--tuning); the
 # held-out seeds 100-109 (--held-out) are the ones to report. Sequences are cached under --work.
 #   bash tools/validate.sh [--tuning | --held-out | --seeds "A B ..."] [--frames N] [--jobs J]
-#                          [--config FILE] [--work DIR] [--label NAME] [PRESET...]
+#                          [--config FILE] [--work DIR] [--label NAME] [--vary] [PRESET...]
+#   --vary: each seed also redraws the scene around its preset (`uavmot sim --vary`: road layout,
+#   asphalt, vehicle mix, colours and sizes, sun, camera, GSD, frame rate, resolution, blur, noise,
+#   JPEG quality), so the sequences vary as real flights do; cached apart from the plain ones.
 #   (default: --held-out, 250 frames, 2 jobs, presets paper hd small lowsnr fastcam dense slow urban3d oblique)
 set -euo pipefail
 cd "$(dirname "$0")/.."
-seeds="100 101 102 103 104 105 106 107 108 109" frames=250 jobs=2 config="" work=out/validation label=default presets=()
+seeds="100 101 102 103 104 105 106 107 108 109" frames=250 jobs=2 config="" work=out/validation label=default presets=() vary=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --tuning) seeds="1 2 3 4 5" ;;
@@ -19,7 +22,8 @@ while [ $# -gt 0 ]; do
     --config) config=$(realpath "$2"); shift ;;
     --work) work=$2; shift ;;
     --label) label=$2; shift ;;
-    -h|--help) sed -n 2,9p "$0"; exit 0 ;;
+    --vary) vary=--vary ;;
+    -h|--help) sed -n 2,12p "$0"; exit 0 ;;
     -*) echo "validate: unknown option '$1'" >&2; exit 2 ;;
     *) presets+=("$1") ;;
   esac
@@ -32,10 +36,10 @@ mkdir -p "$work"
 
 # One run: simulate (cached), process, evaluate; leaves $work/<label>/<preset>-<seed>/eval.json.
 run_one() {
-  local preset=$1 seed=$2 seq="$work/seq/$1-$2-f$frames" out="$work/$label/$1-$2"
+  local preset=$1 seed=$2 seq="$work/seq/$1${vary:+-vary}-$2-f$frames" out="$work/$label/$1${vary:+-vary}-$2"
   if [ ! -f "$seq/done" ]; then
     rm -rf "$seq"
-    "$bin" sim --preset "$preset" --seed "$seed" --frames "$frames" --out "$seq" --quiet >/dev/null 2>&1 && touch "$seq/done"
+    "$bin" sim --preset "$preset" --seed "$seed" --frames "$frames" --out "$seq" --quiet $vary >/dev/null 2>&1 && touch "$seq/done"
   fi
   rm -rf "$out"
   "$bin" process "$seq" --out "$out" --quiet --log-level warn ${config:+--config "$config"} >"$out.log" 2>&1 &&
@@ -43,14 +47,14 @@ run_one() {
       --json "$out/eval.json" >/dev/null 2>>"$out.log" || echo "validate: $preset seed $seed failed (log: $out.log)" >&2
 }
 export -f run_one
-export bin work frames label config
+export bin work frames label config vary
 mkdir -p "$work/$label"
 for preset in "${presets[@]}"; do for seed in $seeds; do echo "$preset $seed"; done; done |
   xargs -P "$jobs" -L 1 bash -c 'run_one "$0" "$1"'
 
-python3 - "$work/$label" "$seeds" "${presets[@]}" <<'PY'
+python3 - "$work/$label" "$seeds" "${vary:+-vary}" "${presets[@]}" <<'PY'
 import json, os, sys
-root, seeds, presets = sys.argv[1], sys.argv[2].split(), sys.argv[3:]
+root, seeds, suffix, presets = sys.argv[1], sys.argv[2].split(), sys.argv[3], sys.argv[4:]
 cols = [("correct %", lambda e: 100 * e["completeness"]["correct_rate"], min),
         ("under %", lambda e: 100 * e["completeness"]["under_segmented_rate"], max),
         ("over %", lambda e: 100 * e["completeness"]["over_segmented_rate"], max),
@@ -61,13 +65,13 @@ cols = [("correct %", lambda e: 100 * e["completeness"]["correct_rate"], min),
         ("on structure / frame", lambda e: e["false_alarms"].get("on_structure_per_frame", 0.0), max),
         ("feature precision", lambda e: e["features"]["precision"], min),
         ("feature recall", lambda e: e["features"]["recall"], min)]
-print(f"seeds {seeds}, root {root}: mean (worst seed)\n")
+print(f"seeds {seeds}{' (scenes varied by the seed)' if suffix else ''}, root {root}: mean (worst seed)\n")
 print("| preset | seeds | " + " | ".join(c[0] for c in cols) + " |")
 print("|---|---:|" + "---:|" * len(cols))
 for p in presets:
     runs = []
     for s in seeds:
-        f = os.path.join(root, f"{p}-{s}", "eval.json")
+        f = os.path.join(root, f"{p}{suffix}-{s}", "eval.json")
         if os.path.exists(f):
             runs.append(json.load(open(f)))
     if not runs:

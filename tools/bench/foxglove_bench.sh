@@ -3,7 +3,8 @@
 # simulated `paper` sequence (1024x768, 25 fps, 250 frames) with no bridge, then with
 # `uavmot foxglove` serving 0, 1 and 4 viewers (tests/foxglove_js/bench_viewer.mjs: subscribed
 # to every channel, counting, not decoding). Per configuration and run:
-#   live:     uavmot-bench-live (mode=live): end-to-end latency median / p99, track lists, drops;
+#   live:     uavmot-bench-live (mode=live): end-to-end latency median / p99, track lists, drops,
+#             CPU seconds of the chain's components / the bridge / the viewers during the run;
 #   lossless: `uavmot launch` (mode=lossless) wall time -> frames per second.
 #   bash tools/bench/foxglove_bench.sh [OUT] [RUNS] [VIEWER ARGS...]   (OUT default out/foxglove_bench, RUNS 2;
 #   VIEWER ARGS e.g. `--prefix uavmot/foxglove/`: viewers take only the Foxglove channels;
@@ -21,11 +22,21 @@ source "$root/tests/support/node_packages.sh"
 require_tools foxglove_bench node npm
 install_node_packages "$js"
 mkdir -p "$out"
+# CPU seconds (user + system) used so far by the given processes (none: 0).
+cpu_seconds() {
+  local total=0 pid
+  for pid in "$@"; do
+    [[ -r /proc/$pid/stat ]] || continue
+    total=$((total + $(awk '{print $14 + $15}' "/proc/$pid/stat")))
+  done
+  python3 -c "print(f'{$total / $(getconf CLK_TCK):.2f}')"
+}
 seq=$out/paper
 [ -f "$seq/seqinfo.ini" ] || "$bin/uavmot" sim --preset paper --seed 1 --frames 250 --out "$seq" --quiet
 gsd=$(sed -n 's/^gsd=//p' "$seq/seqinfo.ini")
 echo "date: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load average: $(cut -d' ' -f1-3 /proc/loadavg)"
-printf '%-8s %3s | %-11s %-9s %-8s %-12s | %-12s | %s\n' config run "live lists" "median" "p99" "drops s/m/s/t" "lossless fps" "bridge"
+printf '%-8s %3s | %-11s %-9s %-8s %-12s | %-20s | %-12s | %s\n' config run "live lists" "median" "p99" "drops s/m/s/t" \
+  "cpu s chain/br/view" "lossless fps" "bridge"
 for run in $(seq "$runs"); do
   for config in none 0 1 4; do
     tag=$config-$run
@@ -44,9 +55,15 @@ for run in $(seq "$runs"); do
         for _ in $(seq 100); do [[ -f "$out/ready-$tag-$v" ]] && break; sleep 0.1; done
       done
     fi
+    # CPU of the bridge and its viewers during the live run, beside the chain's own: on a machine
+    # the chain saturates, what they take is what the chain loses.
+    bridge_pid=$([[ $config != none ]] && echo "$bridge" || true)
+    bridge_cpu0=$(cpu_seconds $bridge_pid) viewers_cpu0=$(cpu_seconds "${pids[@]}")
     # A failed run is reported as such and the next one goes on (a shared machine kills things).
     "$bin/uavmot-bench-live" --input "$seq" --out "$out/live-$tag" --json "$out/live-$tag.json" --domain "$domain" \
       >"$out/live-$tag.txt" 2>"$out/live-$tag.log" || echo '{"failed": true}' >"$out/live-$tag.json"
+    bridge_cpu=$(python3 -c "print(f'{$(cpu_seconds $bridge_pid) - $bridge_cpu0:.2f}')")
+    viewers_cpu=$(python3 -c "print(f'{$(cpu_seconds "${pids[@]}") - $viewers_cpu0:.2f}')")
     start=$(date +%s.%N)
     "$bin/uavmot" launch bringup/local.yaml --input "$seq" --out "$out/lossless-$tag" --set domain="$domain" >"$out/lossless-$tag.log" 2>&1 ||
       start=failed
@@ -59,9 +76,10 @@ for run in $(seq "$runs"); do
       wait "$bridge" || true
       bridge_line=$(grep -o '[0-9]* messages sent, [0-9]* dropped' "$out/bridge-$tag.log" | tail -1)
     fi
-    python3 - "$out/live-$tag.json" "$start" "$end" "$config" "$run" "$bridge_line" <<'PY'
+    python3 - "$out/live-$tag.json" "$start" "$end" "$config" "$run" "$bridge_line" "$bridge_cpu" "$viewers_cpu" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1]))
+cpu = "-"
 fps = "failed" if sys.argv[2] == "failed" else f"{250 / (float(sys.argv[3]) - float(sys.argv[2])):.1f}"
 if j.get("failed"):
     live = f'{"failed":<11} {"":<9} {"":<8} {"":<12}'
@@ -69,7 +87,9 @@ else:
     c = j["components"]
     drops = "/".join(str(c.get(n, {}).get("dropped", "?")) for n in ["source", "motion", "segmentation", "tracking"])
     live = f'{j["track_lists"]:<11} {j["latency_ms"]["median"]:<9.1f} {j["latency_ms"]["p99"]:<8.1f} {drops:<12}'
-print(f'{sys.argv[4]:<8} {sys.argv[5]:>3} | {live} | {fps:<12} | {sys.argv[6]}')
+    chain = sum(v.get("cpu_s", 0) for v in c.values())
+    cpu = f'{chain:.2f} / {float(sys.argv[7]):.2f} / {float(sys.argv[8]):.2f}'
+print(f'{sys.argv[4]:<8} {sys.argv[5]:>3} | {live} | {cpu:<20} | {fps:<12} | {sys.argv[6]}')
 PY
   done
 done

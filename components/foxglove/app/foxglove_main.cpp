@@ -4,6 +4,7 @@
 // Foxglove-schema image and annotation channels the Image panel draws. Any number of viewers; a
 // slow one loses messages, nobody else does.
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <set>
@@ -69,6 +70,7 @@ class TopicBridge {
  public:
   virtual ~TopicBridge() = default;
   virtual size_t drain() = 0;  // takes every waiting sample, serves it; returns how many
+  virtual bool reading() const = 0;  // has a reader (some viewer watches the topic)
   virtual bool wait_for_data(std::chrono::milliseconds timeout) = 0;
   uint64_t invalid() const { return invalid_; }
 
@@ -83,7 +85,6 @@ class TypedBridge final : public TopicBridge {
   TypedBridge(dds::Participant& participant, const record::TopicSpec& spec, const std::string& idl_dir,
               const record::FoxgloveOptions& options, foxglove::WsServer& server, const WriterStarts* starts)
       : participant_(participant), spec_(spec), starts_(starts), options_(options), server_(server) {
-    if (!starts_ || writer_component(spec_.topic).empty()) subscribe();
     raw_channel_ = server_.add_channel({spec.topic, "cdr", spec.type_name, record::schema_text(spec, idl_dir), "omgidl"});
     if (const auto fc = record::foxglove_channel(spec.topic, options)) {
       foxglove_channel_ = server_.add_channel(
@@ -92,10 +93,21 @@ class TypedBridge final : public TopicBridge {
   }
 
   size_t drain() override {
+    // A topic is read only while a viewer watches one of its channels: with no viewer the bridge
+    // has no reader on the chain's topics at all, so the chain's writers have nobody extra to serve.
+    const bool watched = server_.has_subscribers(raw_channel_) || (foxglove_channel_ && server_.has_subscribers(foxglove_channel_));
+    if (!watched) {
+      if (reader_) {
+        participant_.delete_reader(std::move(reader_));
+        spdlog::info("foxglove: no viewer watches {}; reader closed", spec_.topic);
+      }
+      return 0;
+    }
     if (!reader_) {
-      if (!starts_->started(writer_component(spec_.topic))) return 0;
+      const std::string writer = writer_component(spec_.topic);
+      if (starts_ && !writer.empty() && !starts_->started(writer)) return 0;
       subscribe();
-      spdlog::info("foxglove: {} has published; subscribing to {}", writer_component(spec_.topic), spec_.topic);
+      spdlog::info("foxglove: a viewer watches {}; subscribing", spec_.topic);
     }
     size_t n = 0;
     while (reader_->take(sample_)) {
@@ -118,11 +130,8 @@ class TypedBridge final : public TopicBridge {
     }
     return n;
   }
-  bool wait_for_data(std::chrono::milliseconds timeout) override {
-    if (reader_) return reader_->wait_for_data(timeout);
-    std::this_thread::sleep_for(timeout);
-    return false;
-  }
+  bool reading() const override { return reader_ != nullptr; }
+  bool wait_for_data(std::chrono::milliseconds timeout) override { return reader_ && reader_->wait_for_data(timeout); }
 
  private:
   void subscribe() {
@@ -235,7 +244,16 @@ int foxglove_main(int argc, char** argv) {
         size_t taken = 0;
         for (auto& b : bridges) taken += b->drain();
         if (duration_s > 0 && std::chrono::steady_clock::now() - start > std::chrono::duration<double>(duration_s)) break;
-        if (taken == 0) bridges.front()->wait_for_data(std::chrono::milliseconds(2));
+        if (taken == 0) {
+          // Wake for the next sample of a watched topic; with nothing watched, look for new
+          // subscriptions 50 times a second.
+          const auto reading = std::find_if(bridges.begin(), bridges.end(), [](const auto& b) { return b->reading(); });
+          if (reading != bridges.end()) {
+            (*reading)->wait_for_data(std::chrono::milliseconds(2));
+          } else {
+            std::this_thread::sleep_for(std::chrono::milliseconds(20));
+          }
+        }
       }
       const auto c = server.counts();
       uint64_t invalid = 0;

@@ -22,7 +22,7 @@ int sim_main(int argc, char** argv) {
   std::string preset, scenario_file, out_dir, preview_file;
   uint64_t seed = 1;
   std::optional<int> frames;
-  bool quiet = false, list = false, print_scenario = false;
+  bool quiet = false, list = false, print_scenario = false, vary = false;
   int preview_frame = 1;
   double preview_scale = 1.0;
   std::vector<int> preview_crop;
@@ -35,6 +35,9 @@ int sim_main(int argc, char** argv) {
     app.add_option("--seed", seed, "random seed; the same seed gives byte-identical output");
     app.add_option("--out", out_dir, "output folder (created)");
     app.add_option("--frames", frames, "override the number of frames")->check(CLI::Range(1, 100000));
+    app.add_flag("--vary", vary,
+                 "redraw the scene around the preset from the seed: road layout, asphalt, vehicle mix, colours and sizes, sun, "
+                 "camera heading, speed, GSD, frame rate and resolution, blur, noise, JPEG quality (docs/sim.md)");
     app.add_flag("-q,--quiet", quiet, "no progress on stderr");
     app.add_flag("--print-scenario", print_scenario, "print the resolved scenario as YAML and exit");
     app.add_option("--preview", preview_file, "instead of a sequence, write one frame with its ground truth drawn (PNG)");
@@ -50,6 +53,7 @@ int sim_main(int argc, char** argv) {
       if (out_dir.empty() && preview_file.empty() && !print_scenario) throw uavmot::InputError("give --out DIR");
       uavmot::sim::Scenario scenario =
           preset.empty() ? uavmot::sim::load_scenario_file(scenario_file) : uavmot::sim::preset_scenario(preset);
+      if (vary) scenario = uavmot::sim::vary_scenario(scenario, seed);
       if (frames) scenario.frames = *frames;
       uavmot::sim::validate_scenario(scenario);
       if (print_scenario) {
@@ -57,7 +61,8 @@ int sim_main(int argc, char** argv) {
         return 0;
       }
       std::cerr << "uavmot-sim: scenario '" << scenario.name << "', " << scenario.frames << " frames "
-                << scenario.camera.width << "x" << scenario.camera.height << ", seed " << seed << " -> " << out_dir << "\n";
+                << scenario.camera.width << "x" << scenario.camera.height << ", seed " << seed << (vary ? " (varied by the seed)" : "")
+                << " -> " << out_dir << "\n";
       if (!preview_file.empty()) {
         if (preview_frame > scenario.frames) throw uavmot::InputError("--preview-frame is beyond the last frame");
         scenario.frames = preview_frame;

@@ -71,6 +71,7 @@ void visit_scenario(Scenario& s, FieldVisitor& v) {
   v.field("shadow_length_m", t.shadow_length_m, 0.0, 10.0);
   v.field("shadow_angle_deg", t.shadow_angle_deg, -360.0, 360.0);
   v.field("shadow_strength", t.shadow_strength, 0.0, 1.0);
+  v.field("vehicle_size_scale", t.vehicle_size_scale, 0.5, 2.0);
   v.end_section();
 
   StructureParams& b = s.structures;

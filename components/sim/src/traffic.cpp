@@ -104,6 +104,8 @@ Vehicle Traffic::make_vehicle(bool dark_allowed) {
     v.length_m = 4.2 + 0.7 * uni(rng_);
     v.width_m = 1.72 + 0.14 * uni(rng_);
   }
+  v.length_m *= t.vehicle_size_scale;
+  v.width_m *= t.vehicle_size_scale;
   // Luminance of common car paints: white, silver, gray, red, blue, green; dark ones near asphalt.
   static const double bright[] = {232, 214, 188, 165, 140, 112, 98, 120};
   static const double dark[] = {26, 36, 48, 60, 72};
@@ -127,8 +129,8 @@ void Traffic::add_parked(cv::Point2d view_centre, double view_radius) {
     Vehicle v = make_vehicle(true);
     if (v.kind == VehicleKind::Truck) {  // no trucks in stalls
       v.kind = VehicleKind::Van;
-      v.length_m = 5.2;
-      v.width_m = 2.0;
+      v.length_m = 5.2 * scenario_.traffic.vehicle_size_scale;
+      v.width_m = 2.0 * scenario_.traffic.vehicle_size_scale;
     }
     v.parked = true;
     v.position_m = spots[i].centre_m + cv::Point2d(0.3 * (uni(rng_) - 0.5), 0.3 * (uni(rng_) - 0.5));

@@ -73,6 +73,12 @@ class Participant {
     auto* reader = create_reader(topic, profile);
     return std::make_unique<TopicReader<PubSubType>>(reader, topic_name);
   }
+  // Deletes a reader made here before the participant goes (readers that come and go, e.g. the
+  // Foxglove bridge's, which reads a topic only while a viewer watches it).
+  template <class PubSubType>
+  void delete_reader(std::unique_ptr<TopicReader<PubSubType>> reader) {
+    if (reader) subscriber_->delete_datareader(reader->native());
+  }
 
  private:
   eprosima::fastdds::dds::Topic* topic_for(const std::string& name, eprosima::fastdds::dds::TypeSupport type);

@@ -3,6 +3,7 @@
 // degrees, times in seconds. A scenario YAML mirrors this struct section by section
 // (docs/sim.md); presets are named, ready-made scenarios.
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -74,6 +75,7 @@ struct TrafficParams {
   double shadow_length_m = 0.8;       // sun shadow offset
   double shadow_angle_deg = 35.0;     // direction of the shadow on the ground
   double shadow_strength = 0.45;      // 0 = no shadow, 1 = black
+  double vehicle_size_scale = 1.0;    // scales every generated vehicle's length and width
 };
 
 // Static 3-D structure standing on the ground: buildings, trees and walls. They are placed
@@ -156,6 +158,12 @@ struct Scenario {
 const std::vector<std::string>& preset_names();
 // Throws uavmot::InvalidArgument listing the names when `name` is unknown.
 Scenario preset_scenario(const std::string& name);
+// The same kind of scene with its look and layout drawn from `seed` around `base` (`uavmot sim
+// --vary`), so that test data varies as much as real flights do: road layout and asphalt, vehicle
+// mix, colours and sizes, sun and shadows, the camera's heading, speed, GSD, frame rate and
+// resolution, blur, noise, gain and JPEG quality. Ranges are relative to `base`, so a preset keeps
+// its character (`small` stays small, `slow` slow). Deterministic in `seed`.
+Scenario vary_scenario(const Scenario& base, uint64_t seed);
 // Reads a scenario YAML (optionally `preset: NAME` as the base, then sections that override it).
 // Throws InputError naming file, line and key on anything invalid.
 Scenario load_scenario(const ConfigNode& node);

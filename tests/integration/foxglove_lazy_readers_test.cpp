@@ -1,0 +1,106 @@
+// `uavmot foxglove` reads a chain topic only while a viewer watches it: with no viewer the chain's
+// writers see no bridge reader at all (nothing extra to serialise or send, so the bridge cannot
+// slow the chain), a viewer subscribing to a topic's channel brings the reader, and the reader
+// goes when the last viewer of that topic leaves. The chain is played by this test's own writer on
+// `uavmot/tracks` (live mode: the bridge subscribes without waiting for the writer's health).
+
+#include <regex>
+
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include "child_process.hpp"
+#include "tracksPubSubTypes.h"
+#include "uavmot/dds/participant.hpp"
+#include "ws_test_client.hpp"
+
+namespace uavmot {
+namespace {
+using json = nlohmann::json;
+using testing::binary;
+using testing::ChildProcess;
+constexpr int kDomain = 83;
+
+// The port the bridge printed ("serving ... on ws://127.0.0.1:PORT").
+uint16_t served_port(const ChildProcess& bridge) {
+  std::smatch m;
+  for (int i = 0; i < 300; ++i) {
+    const std::string log = bridge.log();
+    if (std::regex_search(log, m, std::regex(R"(ws://127\.0\.0\.1:(\d+))"))) return static_cast<uint16_t>(std::stoi(m[1]));
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return 0;
+}
+
+// The advertised channel id of `topic`.
+uint32_t channel_id(foxglove::TestClient& viewer, const std::string& topic) {
+  EXPECT_EQ(viewer.receive_json()["op"], "serverInfo");
+  const json advertise = viewer.receive_json();
+  EXPECT_EQ(advertise["op"], "advertise");
+  for (const auto& channel : advertise["channels"]) {
+    if (channel["topic"] == topic) return channel["id"].get<uint32_t>();
+  }
+  ADD_FAILURE() << topic << " not advertised: " << advertise.dump();
+  return 0;
+}
+
+TEST(FoxgloveBridge, ReadsATopicOnlyWhileAViewerWatchesIt) {
+  const std::string dir = testing::fresh_dir("foxglove_lazy_readers");
+  ChildProcess bridge({binary("uavmot-foxglove"), "--port", "0", "--domain", std::to_string(kDomain), "--mode", "live",
+                       "--topics", "uavmot/tracks"},
+                      dir + "/bridge.log");
+  const uint16_t port = served_port(bridge);
+  ASSERT_NE(port, 0) << bridge.log();
+
+  dds::DdsOptions options;
+  options.domain_id = kDomain;
+  options.mode = dds::DeliveryMode::Live;
+  options.participant_name = "chain";
+  dds::Participant chain(options);
+  auto writer = chain.make_writer<msg::TrackListPubSubType>(dds::kTracksTopic, dds::TopicClass::Chain);
+
+  // Discovery between two processes on one host takes well under a second; 2 s without a match
+  // means the bridge has no reader.
+  std::this_thread::sleep_for(std::chrono::seconds(2));
+  EXPECT_EQ(writer->matched(), 0) << "a bridge without viewers reads the chain's topic";
+
+  {
+    foxglove::TestClient viewer(port);
+    const uint32_t tracks = channel_id(viewer, "uavmot/tracks");
+    std::this_thread::sleep_for(std::chrono::seconds(1));
+    EXPECT_EQ(writer->matched(), 0) << "a connected viewer that watches nothing brought a reader";
+
+    viewer.send_text(json{{"op", "subscribe"}, {"subscriptions", {{{"id", 1}, {"channelId", tracks}}}}}.dump());
+    ASSERT_TRUE(writer->wait_for_matched(1, std::chrono::seconds(10))) << bridge.log();
+
+    // The viewer gets what the chain writes.
+    msg::TrackList list;
+    list.stream_id("s");
+    list.frame_index(7);
+    bool received = false;
+    for (int i = 0; i < 5 && !received; ++i) {  // the first samples may beat discovery
+      writer->write(list);
+      try {
+        const auto [opcode, payload] = viewer.receive();
+        received = opcode == 2 && !payload.empty() && static_cast<uint8_t>(payload[0]) == 1;  // binary messageData
+      } catch (const std::exception&) {
+      }
+    }
+    EXPECT_TRUE(received) << "the subscribed viewer got no message";
+
+    viewer.send_text(json{{"op", "unsubscribe"}, {"subscriptionIds", {1}}}.dump());
+    EXPECT_TRUE(foxglove::eventually([&] { return writer->matched() == 0; }))
+        << "the reader stayed after the only viewer unsubscribed";
+
+    viewer.send_text(json{{"op", "subscribe"}, {"subscriptions", {{{"id", 2}, {"channelId", tracks}}}}}.dump());
+    ASSERT_TRUE(writer->wait_for_matched(1, std::chrono::seconds(10))) << "no reader for a second subscription";
+  }
+  // The viewer's connection closed: its subscriptions end with it.
+  EXPECT_TRUE(foxglove::eventually([&] { return writer->matched() == 0; })) << "the reader stayed after the viewer left";
+
+  bridge.signal(SIGTERM);
+  EXPECT_EQ(bridge.wait(std::chrono::seconds(20)), 0) << bridge.log();
+}
+
+}  // namespace
+}  // namespace uavmot
