@@ -82,9 +82,12 @@ template <class PubSubType>
 class TypedBridge final : public TopicBridge {
  public:
   // `starts`: subscribe only once the topic's writer has published (lossless chains); null: at once.
+  // `image_interval_ns`: the least time between two encoded images of the frames topic (0: every frame).
   TypedBridge(dds::Participant& participant, const record::TopicSpec& spec, const std::string& idl_dir,
-              const record::FoxgloveOptions& options, foxglove::WsServer& server, const WriterStarts* starts)
-      : participant_(participant), spec_(spec), starts_(starts), options_(options), server_(server) {
+              const record::FoxgloveOptions& options, foxglove::WsServer& server, const WriterStarts* starts,
+              uint64_t image_interval_ns)
+      : participant_(participant), spec_(spec), starts_(starts), options_(options), server_(server),
+        image_interval_ns_(spec.topic == dds::kFramesTopic ? image_interval_ns : 0) {
     raw_channel_ = server_.add_channel({spec.topic, "cdr", spec.type_name, record::schema_text(spec, idl_dir), "omgidl"});
     if (const auto fc = record::foxglove_channel(spec.topic, options)) {
       foxglove_channel_ = server_.add_channel(
@@ -118,7 +121,7 @@ class TypedBridge final : public TopicBridge {
         const auto bytes = record::to_cdr(type_, sample_);
         server_.publish(raw_channel_, received, bytes.data(), bytes.size());
       }
-      if (foxglove_channel_ && server_.has_subscribers(foxglove_channel_)) {
+      if (foxglove_channel_ && server_.has_subscribers(foxglove_channel_) && image_due(received)) {
         std::string why;
         if (const auto bytes = record::to_foxglove(sample_, options_, why)) {
           server_.publish(foxglove_channel_, received, bytes->data(), bytes->size());
@@ -140,6 +143,15 @@ class TypedBridge final : public TopicBridge {
                   : participant_.make_reader<PubSubType>(spec_.topic, std::string("bridge_reader"));
   }
 
+  // Encoding a frame as JPEG is the one costly step of the bridge (~4 ms at 1024 x 768, on the
+  // chain's own cores in a one-box deployment): a person watching needs no 25 images a second.
+  bool image_due(uint64_t now_ns) {
+    if (image_interval_ns_ == 0) return true;
+    if (last_image_ns_ != 0 && now_ns - last_image_ns_ < image_interval_ns_) return false;
+    last_image_ns_ = now_ns;
+    return true;
+  }
+
   dds::Participant& participant_;
   record::TopicSpec spec_;
   const WriterStarts* starts_;
@@ -149,6 +161,7 @@ class TypedBridge final : public TopicBridge {
   PubSubType type_;
   typename PubSubType::type sample_;
   uint32_t raw_channel_ = 0, foxglove_channel_ = 0;
+  uint64_t image_interval_ns_ = 0, last_image_ns_ = 0;
 };
 
 // The air -> ground link's topics (docs/deployment.md), served with --downlink on the ground station.
@@ -192,7 +205,7 @@ int foxglove_main(int argc, char** argv) {
   std::string image_format = "jpeg";
   record::FoxgloveOptions options;
   uint64_t client_buffer_mb = 32;
-  double duration_s = 0.0;
+  double duration_s = 0.0, image_fps = 10.0;
   bool downlink = false;
   return run_app(argc, argv, "foxglove", "live bridge to Foxglove (WebSocket protocol) for the chain's topics", [&](CLI::App& app) {
     app.add_option("--address", server_options.address, "address to listen on (0.0.0.0: every interface)")->capture_default_str();
@@ -210,6 +223,10 @@ int foxglove_main(int argc, char** argv) {
     app.add_option("--jpeg-quality", options.jpeg_quality, "JPEG quality of the image channel")
         ->check(CLI::Range(1, 100))
         ->capture_default_str();
+    app.add_option("--image-fps", image_fps,
+                   "most images a second on uavmot/foxglove/image, evenly spaced (encoding costs the chain CPU); 0: every frame")
+        ->check(CLI::NonNegativeNumber)
+        ->capture_default_str();
     app.add_option("--gsd", options.style.gsd_m, "ground sampling distance, m/px (> 0: track labels in km/h)")
         ->check(CLI::NonNegativeNumber);
     app.add_option("--fps", options.style.fps, "frame rate, for km/h")->check(CLI::PositiveNumber)->capture_default_str();
@@ -223,6 +240,8 @@ int foxglove_main(int argc, char** argv) {
       dds::finalize(node, "foxglove");
       options.image_format = foxglove::parse_image_format(image_format);
       server_options.client_buffer_bytes = client_buffer_mb << 20;
+      // Slightly under the period, so frames arriving at exactly the rate are not skipped by jitter.
+      const uint64_t image_interval_ns = image_fps > 0 ? static_cast<uint64_t>(0.9e9 / image_fps) : 0;
       const auto chosen = downlink ? select_link_topics(topics, exclude) : record::select_topics(topics, exclude);
       const std::string idl_dir = record::find_idl_dir();
       install_shutdown_handler();
@@ -233,7 +252,7 @@ int foxglove_main(int argc, char** argv) {
       std::vector<std::unique_ptr<TopicBridge>> bridges;
       for (const auto& spec : chosen) {
         bridges.push_back(with_bridge_type(spec.topic, [&]<class P>() -> std::unique_ptr<TopicBridge> {
-          return std::make_unique<TypedBridge<P>>(participant, spec, idl_dir, options, server, starts.get());
+          return std::make_unique<TypedBridge<P>>(participant, spec, idl_dir, options, server, starts.get(), image_interval_ns);
         }));
       }
       spdlog::info("foxglove: serving {} {} topics on ws://{}:{} (Foxglove: Open connection -> Foxglove WebSocket)",
