@@ -1,12 +1,12 @@
-#include "uavmot/tracking/initiator.hpp"
+#include "initiator.hpp"
 
 #include <algorithm>
 #include <limits>
 
-#include "uavmot/tracking/kalman_model.hpp"
-#include "uavmot/tracking/piece_merger.hpp"
-#include "uavmot/tracking/spatial_grid.hpp"
-#include "uavmot/tracking/split_merge.hpp"
+#include "kalman_model.hpp"
+#include "piece_merger.hpp"
+#include "spatial_grid.hpp"
+#include "split_merge.hpp"
 
 namespace uavmot::tracking {
 namespace {

@@ -1,8 +1,8 @@
 // Track initiation: which free regions start tracks (initiator.hpp).
 #include <gtest/gtest.h>
 
-#include "uavmot/tracking/initiator.hpp"
-#include "uavmot/tracking/kalman_model.hpp"
+#include "initiator.hpp"
+#include "kalman_model.hpp"
 
 namespace uavmot::tracking {
 namespace {

@@ -211,10 +211,11 @@ TEST(TrackerScenario, VehicleLeavingAndReenteringTheView) {
   };
   SyntheticScene scene({car(1, {200, 240}, {1.0, 0.2})}, pan);
   Tracker tracker;
-  tracker.set_image_size(SceneOptions{}.image_width, SceneOptions{}.image_height);  // as the pipeline does
   std::vector<std::pair<int, uint64_t>> visible_ids;  // (frame, id) while visible
   for (int k = 1; k <= 130; ++k) {
-    const SyntheticFrame f = scene.next();
+    SyntheticFrame f = scene.next();
+    f.motion.image_width = SceneOptions{}.image_width;  // as the motion layer reports it
+    f.motion.image_height = SceneOptions{}.image_height;
     const TrackList out = tracker.process(f.motion, f.segmentation);
     for (const auto& t : out.tracks) {
       // Never a track far outside the view while nothing is there.
@@ -246,10 +247,13 @@ TEST(TrackerScenario, TrackLeavingTheImageIsNotReportedOutsideIt) {
   for (const bool image_known : {false, true}) {
     SyntheticScene scene({car(1, {200, 100}, {3.0, 0.0})}, static_camera(), opts);
     Tracker tracker;
-    if (image_known) tracker.set_image_size(opts.image_width, opts.image_height);
     int outside_reported = 0;
     for (int k = 1; k <= 60; ++k) {
-      const SyntheticFrame f = scene.next();
+      SyntheticFrame f = scene.next();
+      if (image_known) {  // the size comes with the motion estimate
+        f.motion.image_width = opts.image_width;
+        f.motion.image_height = opts.image_height;
+      }
       for (const auto& t : tracker.process(f.motion, f.segmentation).tracks) {
         outside_reported += (t.box.cx > opts.image_width) ? 1 : 0;
       }

@@ -9,7 +9,7 @@
 #include <vector>
 
 #include "uavmot/core/scene_info.hpp"
-#include "uavmot/tracking/feature_associator.hpp"
+#include "feature_associator.hpp"
 #include "uavmot/tracking/tracker_options.hpp"
 #include "uavmot/tracking/tracker_state.hpp"
 
