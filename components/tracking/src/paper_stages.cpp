@@ -91,7 +91,7 @@ class PaperInitiator final : public Initiator {
   PaperInitiator(const TrackerOptions& options, const SceneInfo& scene) : options_(options), scene_(scene) {}
   void initiate(const std::vector<int>& free_regions, const FrameInput& input,
                 const std::vector<OrientedBox>& live_boxes, TrackerState& state) const override {
-    initiate_tracks(free_regions, input.regions, live_boxes, input.features, options_, scene_, state);
+    initiate_tracks(free_regions, input, live_boxes, options_, scene_, state);
   }
 
  private:
