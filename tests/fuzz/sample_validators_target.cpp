@@ -70,7 +70,6 @@ void check_tracker_state(const uint8_t* data, size_t size) {
   motion.quality.valid = true;
   SegmentationResult segmentation;
   segmentation.frame_index = motion.frame_index;
-  tracker.set_image_size(motion.image_width, motion.image_height);
   (void)tracker.process(motion, segmentation);
 }
 

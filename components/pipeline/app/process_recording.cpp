@@ -47,8 +47,6 @@ int process_recording(const std::string& recording, const std::string& out_dir, 
           s.tracker = std::make_unique<tracking::Tracker>(options.tracking, options.scene);
           spdlog::info("stream '{}' -> {}", id, o.directory);
         }
-        // As the chain does: the tracker learns where the image ends from the motion estimate.
-        s.tracker->set_image_size(motion.image_width, motion.image_height);
         const TrackList tracks = s.tracker->process(motion, segmentation);
         s.files->write_motion(motion);
         s.files->write_segmentation(segmentation);

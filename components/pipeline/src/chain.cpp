@@ -54,7 +54,6 @@ ChainOutput Chain::segment_and_track(const Frame& frame, MotionEstimate motion) 
   out.segmentation = layers_->segmenter.process(frame, out.motion);
   times_.segmentation_s += seconds_since(start);
   start = Clock::now();
-  layers_->tracker.set_image_size(out.motion.image_width, out.motion.image_height);
   out.tracks = layers_->tracker.process(out.motion, out.segmentation);
   times_.tracking_s += seconds_since(start);
   ++times_.frames;

@@ -77,7 +77,6 @@ int tracking_main(int argc, char** argv) {
                       const SegmentationResult& segmentation) -> std::optional<msg::TrackList> {
                     StreamTracker& s = tracker_for(stream);
                     if (index <= s.restored_frame) return std::nullopt;  // already in the restored state
-                    s.tracker.set_image_size(motion.image_width, motion.image_height);
                     return dds::to_msg(s.tracker.process(motion, segmentation));
                   },
                   // The state is saved once the frame's tracks are out: a crash in between makes the

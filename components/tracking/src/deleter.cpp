@@ -1,10 +1,10 @@
-#include "uavmot/tracking/deleter.hpp"
+#include "deleter.hpp"
 
 #include <algorithm>
 #include <bit>
 #include <cmath>
 
-#include "uavmot/tracking/kalman_model.hpp"
+#include "kalman_model.hpp"
 
 namespace uavmot::tracking {
 
@@ -31,22 +31,22 @@ void record_frame(TrackRecord& track, bool region_hit, bool supported, const Tra
 namespace {
 
 // Pixel centres run from 0 to size - 1, so the image covers [-0.5, size - 0.5).
-bool inside_image(double x, double y, const TrackerOptions& options) {
-  return x >= -0.5 && y >= -0.5 && x < options.image_width - 0.5 && y < options.image_height - 0.5;
+bool inside_image(double x, double y, const cv::Size& image) {
+  return x >= -0.5 && y >= -0.5 && x < image.width - 0.5 && y < image.height - 0.5;
 }
 
-bool image_size_known(const TrackerOptions& options) { return options.image_width > 0 && options.image_height > 0; }
+bool image_size_known(const cv::Size& image) { return image.width > 0 && image.height > 0; }
 
 }  // namespace
 
-bool inside_view(const OrientedBox& box, const TrackerOptions& options) {
-  return !image_size_known(options) || inside_image(box.cx, box.cy, options);
+bool inside_view(const OrientedBox& box, const cv::Size& image) {
+  return !image_size_known(image) || inside_image(box.cx, box.cy, image);
 }
 
-bool wholly_inside_view(const OrientedBox& box, const TrackerOptions& options) {
-  if (!image_size_known(options)) return true;
+bool wholly_inside_view(const OrientedBox& box, const cv::Size& image) {
+  if (!image_size_known(image)) return true;
   for (const auto& c : box_corners(box)) {
-    if (!inside_image(c.x, c.y, options)) return false;
+    if (!inside_image(c.x, c.y, image)) return false;
   }
   return true;
 }

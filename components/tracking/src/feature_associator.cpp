@@ -1,4 +1,4 @@
-#include "uavmot/tracking/feature_associator.hpp"
+#include "feature_associator.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -152,33 +152,44 @@ std::optional<cv::Vec2d> linked_velocity(const TrackRecord& track, const Feature
   return median_velocity_of(linked_features(track, features), min_features);
 }
 
-void link_new_features(std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
-                       const std::vector<OrientedBox>& posterior, const std::vector<cv::Vec2d>& velocities,
-                       const std::vector<bool>& velocity_known, const std::vector<bool>& may_link,
-                       const FeatureIndex& features, const TrackerOptions& options) {
+namespace {
+
+// Where criteria 2 and 3 look for a track's new features.
+OrientedBox search_area(const TrackInFrame& track, const TrackerOptions& options, double min_length_px) {
+  OrientedBox area = track.predicted;
+  const bool under_way = track.velocity_known && cv::norm(track.velocity) >= options.heading_min_speed_px;
+  if (under_way && area.length < min_length_px) area.length = min_length_px;
+  return area;
+}
+
+}  // namespace
+
+void link_new_features(std::vector<TrackInFrame>& tracks, const FeatureIndex& features, const TrackerOptions& options,
+                       double min_search_length_px) {
   const size_t max_links = static_cast<size_t>(options.max_features_per_track);
   // Criterion 1: features linked to any track are taken.
   std::set<uint64_t> taken;
   for (const auto& t : tracks) {
-    for (const auto& link : t.features) taken.insert(link.feature_id);
+    for (const auto& link : t.record.features) taken.insert(link.feature_id);
   }
   // How many predictions contain each feature (criteria 2 and 3).
   std::vector<int> containing(features.all().size(), 0);
   std::vector<std::vector<int>> inside_of_track(tracks.size());
   for (size_t t = 0; t < tracks.size(); ++t) {
-    inside_of_track[t] = features.inside(predicted[t]);
+    inside_of_track[t] = features.inside(search_area(tracks[t], options, min_search_length_px));
     for (const int i : inside_of_track[t]) ++containing[static_cast<size_t>(i)];
   }
   for (size_t t = 0; t < tracks.size(); ++t) {
-    if (!may_link[t] || tracks[t].features.size() >= max_links) continue;
+    std::vector<FeatureLink>& links = tracks[t].record.features;
+    if (!tracks[t].region_hit || links.size() >= max_links) continue;
     std::vector<const TrackedFeature*> candidates;
     for (const int i : inside_of_track[t]) {
       const TrackedFeature& f = features.all()[static_cast<size_t>(i)];
       if (containing[static_cast<size_t>(i)] == 1 && !taken.count(f.id)) candidates.push_back(&f);
     }
     if (candidates.empty()) continue;
-    cv::Vec2d reference = velocities[t];
-    if (!velocity_known[t]) {
+    cv::Vec2d reference = tracks[t].velocity;
+    if (!tracks[t].velocity_known) {
       std::vector<cv::Vec2d> vs;
       for (const auto* f : candidates) vs.push_back(f->velocity);
       reference = median_velocity(vs);
@@ -187,12 +198,12 @@ void link_new_features(std::vector<TrackRecord>& tracks, const std::vector<Orien
     std::stable_sort(candidates.begin(), candidates.end(),
                      [](const TrackedFeature* a, const TrackedFeature* b) { return a->age > b->age; });
     for (const auto* f : candidates) {
-      if (tracks[t].features.size() >= max_links) break;
+      if (links.size() >= max_links) break;
       if (!similar_motion(f->velocity, reference, options)) continue;
-      tracks[t].features.push_back(FeatureLink{f->id, to_box_coordinates(posterior[t], f->position), 0});
+      links.push_back(FeatureLink{f->id, to_box_coordinates(tracks[t].posterior, f->position), 0});
       taken.insert(f->id);
     }
-    std::sort(tracks[t].features.begin(), tracks[t].features.end(),
+    std::sort(links.begin(), links.end(),
               [](const FeatureLink& a, const FeatureLink& b) { return a.feature_id < b.feature_id; });
   }
 }

@@ -1,12 +1,12 @@
-#include "uavmot/tracking/initiator.hpp"
+#include "initiator.hpp"
 
 #include <algorithm>
 #include <limits>
 
-#include "uavmot/tracking/kalman_model.hpp"
-#include "uavmot/tracking/piece_merger.hpp"
-#include "uavmot/tracking/spatial_grid.hpp"
-#include "uavmot/tracking/split_merge.hpp"
+#include "kalman_model.hpp"
+#include "piece_merger.hpp"
+#include "spatial_grid.hpp"
+#include "split_merge.hpp"
 
 namespace uavmot::tracking {
 namespace {
@@ -28,10 +28,24 @@ bool compatible_direction(const TrackRecord& track, const cv::Vec2d* region_velo
   return last.dot(*region_velocity) > 0.0;
 }
 
+// Where and how alike a region must be to re-acquire a dormant track.
+struct ReacquireGate {
+  double radius_px;     // along the anchor's axis
+  double lateral_px;    // across it
+  double size_ratio;    // similar_size() ...
+  double size_slack_px;  // ... or within this
+  double min_speed_px;  // compatible_direction() compares directions above this speed
+};
+
+ReacquireGate reacquire_gate(const TrackerOptions& options, const SceneInfo& scene) {
+  return {scene.metres_to_px(options.reacquire_radius_m), scene.metres_to_px(options.reacquire_lateral_m),
+          options.reacquire_size_ratio, 2.0 * options.region_size_sigma_px, options.feature_min_speed_for_direction};
+}
+
 // The dormant track closest to `region` within the re-acquisition radius, or -1.
 // Vehicles that stop and go move along their axis, so the gate is long along it and narrow across.
 int find_dormant(const OrientedBox& region, const cv::Vec2d* region_velocity, const std::vector<TrackRecord>& dormant,
-                 double radius_px, double lateral_px, double ratio, double slack_px, double min_speed) {
+                 const ReacquireGate& gate) {
   int best = -1;
   double best_distance = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i < dormant.size(); ++i) {
@@ -40,8 +54,9 @@ int find_dormant(const OrientedBox& region, const cv::Vec2d* region_velocity, co
     const double along = std::abs(uv.x * anchor.length);
     const double across = std::abs(uv.y * anchor.width);
     const double d = along + across;
-    if (along <= radius_px && across <= lateral_px && d < best_distance && similar_size(region, anchor, ratio, slack_px) &&
-        compatible_direction(dormant[i], region_velocity, min_speed)) {
+    if (along <= gate.radius_px && across <= gate.lateral_px && d < best_distance &&
+        similar_size(region, anchor, gate.size_ratio, gate.size_slack_px) &&
+        compatible_direction(dormant[i], region_velocity, gate.min_speed_px)) {
       best = static_cast<int>(i);
       best_distance = d;
     }
@@ -72,15 +87,16 @@ bool part_of_a_live_vehicle(const OrientedBox& region, const std::vector<Oriente
 
 }  // namespace
 
-void initiate_tracks(const std::vector<int>& free_regions, const std::vector<OrientedBox>& regions,
-                     const std::vector<OrientedBox>& live_boxes, const FeatureIndex& features,
-                     const TrackerOptions& options, const SceneInfo& scene, TrackerState& state) {
+void initiate_tracks(const std::vector<int>& free_regions, const FrameInput& input,
+                     const std::vector<OrientedBox>& live_boxes, const TrackerOptions& options, const SceneInfo& scene,
+                     TrackerState& state) {
+  const std::vector<OrientedBox>& regions = input.regions;
+  const FeatureIndex& features = input.features;
   SpatialGrid live_grid;
   for (size_t i = 0; i < live_boxes.size(); ++i) live_grid.insert(static_cast<int>(i), axis_aligned_bounds(live_boxes[i]));
   std::vector<OrientedBox> started;  // boxes started in this call, so two overlapping regions start one track
   const BoxMeasurementNoise noise = box_measurement_noise(options);
-  const double radius_px = scene.metres_to_px(options.reacquire_radius_m);
-  const double lateral_px = scene.metres_to_px(options.reacquire_lateral_m);
+  const ReacquireGate gate = reacquire_gate(options, scene);
   for (const int r : free_regions) {
     const OrientedBox& region = regions[static_cast<size_t>(r)];
     const double area = box_area(region);
@@ -94,9 +110,7 @@ void initiate_tracks(const std::vector<int>& free_regions, const std::vector<Ori
     const bool has_motion = region_motion(region, features, velocity);
     const KalmanState kalman = initial_state(
         region, velocity, has_motion ? options.init_velocity_sigma_features : options.init_velocity_sigma, noise);
-    const int dormant = find_dormant(region, has_motion ? &velocity : nullptr, state.dormant, radius_px, lateral_px,
-                                     options.reacquire_size_ratio, 2.0 * options.region_size_sigma_px,
-                                     options.feature_min_speed_for_direction);
+    const int dormant = find_dormant(region, has_motion ? &velocity : nullptr, state.dormant, gate);
     TrackRecord track;
     if (dormant >= 0) {
       // Re-acquired: same id and history, fresh filter state, features relearnt.

@@ -1,11 +1,25 @@
-#include "uavmot/tracking/kalman_model.hpp"
+#include "kalman_model.hpp"
 
 #include <cmath>
+#include <utility>
 
 namespace uavmot::tracking {
 
 ProcessNoise process_noise(const TrackerOptions& options) {
   return {options.process_accel_sigma_px, options.process_size_sigma_px, options.process_angle_sigma_deg};
+}
+
+StateCovariance process_noise_covariance(const ProcessNoise& noise) {
+  StateCovariance q = StateCovariance::Zero();
+  const double a2 = noise.accel_sigma_px * noise.accel_sigma_px;
+  for (const auto& [pos, vel] : {std::pair{kX, kVx}, std::pair{kY, kVy}}) {
+    q(pos, pos) = 0.25 * a2;
+    q(pos, vel) = q(vel, pos) = 0.5 * a2;
+    q(vel, vel) = a2;
+  }
+  q(kWidth, kWidth) = q(kLength, kLength) = noise.size_sigma_px * noise.size_sigma_px;
+  q(kAngle, kAngle) = noise.angle_sigma_deg * noise.angle_sigma_deg;
+  return q;
 }
 
 BoxMeasurementNoise box_measurement_noise(const TrackerOptions& options) {

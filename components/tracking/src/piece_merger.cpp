@@ -1,11 +1,11 @@
-#include "uavmot/tracking/piece_merger.hpp"
+#include "piece_merger.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-#include "uavmot/tracking/spatial_grid.hpp"
-#include "uavmot/tracking/split_merge.hpp"
-#include "uavmot/tracking/updater.hpp"
+#include "spatial_grid.hpp"
+#include "split_merge.hpp"
+#include "updater.hpp"
 
 namespace uavmot::tracking {
 namespace {
@@ -85,24 +85,22 @@ bool are_pieces_of_one_object(const OrientedBox& a, const cv::Vec2d& motion_a, c
   return length <= options.max_object_length_factor * scene.metres_to_px(scene.vehicle_length_m);
 }
 
-std::vector<bool> merge_track_pieces(const std::vector<TrackRecord>& tracks, std::vector<KalmanState>& kalman,
-                                     const std::vector<bool>& measured, const FeatureIndex& features,
-                                     const TrackerOptions& options, const SceneInfo& scene) {
+void merge_track_pieces(std::vector<TrackInFrame>& tracks, const FeatureIndex& features, const TrackerOptions& options,
+                        const SceneInfo& scene) {
   const size_t n = tracks.size();
-  std::vector<bool> absorbed(n, false);
-  if (!(options.piece_max_gap_m > 0.0)) return absorbed;
+  if (!(options.piece_max_gap_m > 0.0)) return;
   // Each measured track's box and the motion of the features on it (precise to a few hundredths
   // of a pixel per frame, unlike a young track's Kalman velocity).
   std::vector<OrientedBox> boxes(n);
   std::vector<cv::Vec2d> motion(n);
   std::vector<bool> candidate(n, false);
   for (size_t i = 0; i < n; ++i) {
-    if (!measured[i]) continue;
-    boxes[i] = box_of(kalman[i].mean);
+    if (!tracks[i].region_hit) continue;
+    boxes[i] = box_of(tracks[i].kalman.mean);
     candidate[i] = region_motion(boxes[i], features, motion[i]);
     // A featureless piece (a dark bar across a trailer) moves as its filter says once that has settled.
-    if (!candidate[i] && static_cast<int>(tracks[i].hits) >= kSettledHits) {
-      motion[i] = velocity_of(kalman[i].mean);
+    if (!candidate[i] && static_cast<int>(tracks[i].record.hits) >= kSettledHits) {
+      motion[i] = velocity_of(tracks[i].kalman.mean);
       candidate[i] = true;
     }
   }
@@ -124,18 +122,18 @@ std::vector<bool> merge_track_pieces(const std::vector<TrackRecord>& tracks, std
       const OrientedBox& b = boxes[j];
       const cv::Vec2d va = motion[i], vb = motion[j];
       if (!are_pieces_of_one_object(a, va, b, vb, options, scene)) continue;
-      const size_t keeper = senior(tracks[i], tracks[j]) ? i : j;
+      const size_t keeper = senior(tracks[i].record, tracks[j].record) ? i : j;
       const size_t piece = keeper == i ? j : i;
       const OrientedBox& kept_box = keeper == i ? a : b;
       const OrientedBox& piece_box = keeper == i ? b : a;
       const OrientedBox whole = union_along_axis(kept_box, measure(kept_box, piece_box, va + vb));
-      open_size_uncertainty(kalman[keeper], whole);
-      kalman[keeper] = update_with_box(kalman[keeper], whole, noise, options.min_box_size_px);
-      absorbed[piece] = true;
+      KalmanState& kept = tracks[keeper].kalman;
+      open_size_uncertainty(kept, whole);
+      kept = update_with_box(kept, whole, noise, options.min_box_size_px);
+      tracks[piece].absorbed = true;
       merged[i] = merged[j] = true;
     }
   }
-  return absorbed;
 }
 
 }  // namespace uavmot::tracking

@@ -1,4 +1,4 @@
-#include "uavmot/tracking/predictor.hpp"
+#include "predictor.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -39,16 +39,7 @@ KalmanState predict(const KalmanState& state, const Homography& h, const Process
   KalmanState out;
   out.mean = transition(state.mean, h);
   const StateCovariance f = transition_jacobian(state.mean, h);
-  StateCovariance q = StateCovariance::Zero();
-  // Piecewise-constant white acceleration per axis (discrete, dt = 1 frame).
-  const double a2 = noise.accel_sigma_px * noise.accel_sigma_px;
-  for (const auto& [pos, vel] : {std::pair{kX, kVx}, std::pair{kY, kVy}}) {
-    q(pos, pos) = 0.25 * a2;
-    q(pos, vel) = q(vel, pos) = 0.5 * a2;
-    q(vel, vel) = a2;
-  }
-  q(kWidth, kWidth) = q(kLength, kLength) = noise.size_sigma_px * noise.size_sigma_px;
-  q(kAngle, kAngle) = noise.angle_sigma_deg * noise.angle_sigma_deg;
+  const StateCovariance q = process_noise_covariance(noise);
   out.covariance = f * state.covariance * f.transpose() + q;
   out.covariance = 0.5 * (out.covariance + out.covariance.transpose());
   return out;

@@ -1,8 +1,8 @@
-#include "uavmot/tracking/region_associator.hpp"
+#include "region_associator.hpp"
 
 #include <algorithm>
 
-#include "uavmot/tracking/spatial_grid.hpp"
+#include "spatial_grid.hpp"
 
 namespace uavmot::tracking {
 

@@ -1,4 +1,4 @@
-#include "uavmot/tracking/spatial_grid.hpp"
+#include "spatial_grid.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "uavmot/tracking/split_merge.hpp"
+#include "split_merge.hpp"
 
 #include <algorithm>
 #include <set>
@@ -13,6 +13,15 @@ bool region_motion(const OrientedBox& box, const FeatureIndex& features, cv::Vec
   if (vs.empty()) return false;
   velocity = median_velocity(vs);
   return true;
+}
+
+ObjectLimits object_limits(const TrackerOptions& options, const SceneInfo& scene) {
+  ObjectLimits limits;
+  limits.single_object = cv::Size2d(scene.metres_to_px(scene.vehicle_width_m) * options.single_object_size_factor,
+                                    scene.metres_to_px(scene.vehicle_length_m) * options.single_object_size_factor);
+  limits.largest_object = cv::Size2d(scene.metres_to_px(options.max_object_width_m),
+                                     scene.metres_to_px(scene.vehicle_length_m) * options.max_object_length_factor);
+  return limits;
 }
 
 OrientedBox enclosing_box(const std::vector<OrientedBox>& boxes) {
@@ -51,7 +60,7 @@ bool fits_inside(const OrientedBox& candidate, const OrientedBox& predicted, dou
 }
 
 // Split handling for one track and the regions only it validates.
-TrackMeasurement split_measurement(const TrackRecord& track, const OrientedBox& predicted, const std::vector<int>& own,
+TrackMeasurement split_measurement(const TrackInFrame& track, const std::vector<int>& own,
                                    const std::vector<double>& overlaps, const std::vector<OrientedBox>& regions,
                                    const FeatureIndex& features, const TrackerOptions& options,
                                    const cv::Size2d& largest_object_px, std::vector<int>& leftovers) {
@@ -66,7 +75,7 @@ TrackMeasurement split_measurement(const TrackRecord& track, const OrientedBox& 
   int best_links = -1;
   double best_overlap = -1.0;
   for (size_t i = 0; i < own.size(); ++i) {
-    const int links = linked_features_inside(track, regions[static_cast<size_t>(own[i])], features);
+    const int links = linked_features_inside(track.record, regions[static_cast<size_t>(own[i])], features);
     if (links > best_links || (links == best_links && overlaps[i] > best_overlap)) {
       primary = i;
       best_links = links;
@@ -85,7 +94,7 @@ TrackMeasurement split_measurement(const TrackRecord& track, const OrientedBox& 
     std::vector<OrientedBox> grown = parts;
     grown.push_back(candidate);
     const OrientedBox union_box = enclosing_box(grown);
-    if (same_motion && fits_inside(union_box, predicted, options.fragment_union_factor, largest_object_px)) {
+    if (same_motion && fits_inside(union_box, track.predicted, options.fragment_union_factor, largest_object_px)) {
       parts = std::move(grown);  // a fragment of the same object
     } else {
       leftovers.push_back(own[i]);
@@ -102,14 +111,14 @@ namespace {
 
 // A tentative track never turns an established track's region into a merge: where a region validates
 // both, the tentative track's claim is dropped (it then misses and is deleted if it was spurious).
-RegionAssociation without_tentative_claims(const RegionAssociation& association, const std::vector<TrackRecord>& tracks) {
+RegionAssociation without_tentative_claims(const RegionAssociation& association, const std::vector<TrackInFrame>& tracks) {
   RegionAssociation out = association;
   for (auto& claimants : out.tracks_of_region) {
     const bool has_established = std::any_of(claimants.begin(), claimants.end(), [&](int t) {
-      return tracks[static_cast<size_t>(t)].state != TrackState::Tentative;
+      return tracks[static_cast<size_t>(t)].record.state != TrackState::Tentative;
     });
     if (!has_established || claimants.size() < 2) continue;
-    std::erase_if(claimants, [&](int t) { return tracks[static_cast<size_t>(t)].state == TrackState::Tentative; });
+    std::erase_if(claimants, [&](int t) { return tracks[static_cast<size_t>(t)].record.state == TrackState::Tentative; });
   }
   for (size_t t = 0; t < tracks.size(); ++t) {
     auto& regs = out.regions_of_track[t];
@@ -131,28 +140,26 @@ bool senior(const TrackRecord& a, const TrackRecord& b) { return a.hits != b.hit
 // A shared region no larger than one object, whose tracks move alike, holds one object that was
 // tracked in pieces (over-segmentation at its first frames): the senior track keeps the region and
 // the others, if it was all they saw, are absorbed.
+// Sets absorbed[t] for the absorbed tracks and keepers[t] for the tracks that keep such a region.
 void absorb_pieces(RegionAssociation& association, const std::vector<OrientedBox>& regions,
-                   const std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
-                   const std::vector<cv::Vec2d>& velocities,
-                   const cv::Size2d& max_object_size_px, const cv::Size2d& largest_object_px,
-                   const TrackerOptions& options, std::vector<bool>& absorbed,
-                   std::vector<bool>& keepers) {
-  if (max_object_size_px.width <= 0.0 || max_object_size_px.height <= 0.0) return;
+                   const std::vector<TrackInFrame>& tracks, const ObjectLimits& limits, const TrackerOptions& options,
+                   std::vector<bool>& absorbed, std::vector<bool>& keepers) {
+  if (limits.single_object.width <= 0.0 || limits.single_object.height <= 0.0) return;
   for (size_t r = 0; r < regions.size(); ++r) {
     auto& claimants = association.tracks_of_region[r];
     if (claimants.size() < 2) continue;
-    if (larger_than(regions[r], max_object_size_px)) continue;
+    if (larger_than(regions[r], limits.single_object)) continue;
     // The tracks themselves must fit in one object too: two cars side by side at one speed may both
     // claim a small blob between them, and neither is a piece of the other.
     std::vector<OrientedBox> claimed;
-    for (const int t : claimants) claimed.push_back(predicted[static_cast<size_t>(t)]);
-    if (larger_than(enclosing_box(claimed), largest_object_px)) continue;
+    for (const int t : claimants) claimed.push_back(tracks[static_cast<size_t>(t)].predicted);
+    if (larger_than(enclosing_box(claimed), limits.largest_object)) continue;
     size_t keeper = static_cast<size_t>(claimants.front());
     for (const int t : claimants) {
-      if (senior(tracks[static_cast<size_t>(t)], tracks[keeper])) keeper = static_cast<size_t>(t);
+      if (senior(tracks[static_cast<size_t>(t)].record, tracks[keeper].record)) keeper = static_cast<size_t>(t);
     }
     const bool alike = std::all_of(claimants.begin(), claimants.end(), [&](int t) {
-      return similar_motion(velocities[static_cast<size_t>(t)], velocities[keeper], options);
+      return similar_motion(tracks[static_cast<size_t>(t)].velocity, tracks[keeper].velocity, options);
     });
     if (!alike) continue;
     for (const int t : claimants) {
@@ -172,17 +179,14 @@ void absorb_pieces(RegionAssociation& association, const std::vector<OrientedBox
 }  // namespace
 
 SplitMergeResult resolve_split_merge(const RegionAssociation& gating, const std::vector<OrientedBox>& regions,
-                                     const std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
-                                     const std::vector<cv::Vec2d>& velocities, const cv::Size2d& max_object_size_px,
-                                     const FeatureIndex& features, const TrackerOptions& options,
-                                     const cv::Size2d& largest_object_px) {
+                                     const std::vector<TrackInFrame>& tracks, const FeatureIndex& features,
+                                     const TrackerOptions& options, const ObjectLimits& limits) {
   RegionAssociation association = without_tentative_claims(gating, tracks);
   SplitMergeResult result;
   result.measurements.resize(tracks.size());
   result.absorbed.assign(tracks.size(), false);
   std::vector<bool> keepers(tracks.size(), false);
-  absorb_pieces(association, regions, tracks, predicted, velocities, max_object_size_px, largest_object_px, options,
-                result.absorbed, keepers);
+  absorb_pieces(association, regions, tracks, limits, options, result.absorbed, keepers);
   std::vector<int> leftovers;
   for (size_t t = 0; t < tracks.size(); ++t) {
     const auto& candidates = association.regions_of_track[t];
@@ -196,15 +200,16 @@ SplitMergeResult resolve_split_merge(const RegionAssociation& gating, const std:
       }
     }
     if (!own.empty()) {
-      result.measurements[t] = split_measurement(tracks[t], predicted[t], own, own_overlaps, regions, features, options,
-                                                 largest_object_px, leftovers);
+      result.measurements[t] = split_measurement(tracks[t], own, own_overlaps, regions, features, options,
+                                                 limits.largest_object, leftovers);
       result.measurements[t].size_jump = result.measurements[t].size_jump || keepers[t];
       continue;
     }
     // Merge: every region this track sees is shared with another track.
     TrackMeasurement m;
     m.merged = true;
-    if (const auto centre = reconstruct_centre(tracks[t], predicted[t], features, options.min_reconstruction_features)) {
+    if (const auto centre = reconstruct_centre(tracks[t].record, tracks[t].predicted, features,
+                                               options.min_reconstruction_features)) {
       m.kind = MeasurementKind::Centre;
       m.centre = *centre;
     }

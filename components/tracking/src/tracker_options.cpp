@@ -1,10 +1,12 @@
 #include "uavmot/tracking/tracker_options.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 #include <vector>
 
 #include "uavmot/core/chain_types.hpp"
+#include "motion_model.hpp"
 #include "uavmot/core/error.hpp"
 
 namespace uavmot::tracking {
@@ -98,11 +100,12 @@ const std::vector<IntField>& int_fields() {
 
 TrackerOptions load_tracker_options(const ConfigNode& node) {
   TrackerOptions options;
-  std::vector<std::string> known = {"region_method"};
+  std::vector<std::string> known = {"region_method", "motion_model"};
   for (const auto& f : double_fields()) known.emplace_back(f.key);
   for (const auto& f : int_fields()) known.emplace_back(f.key);
   node.expect_only(known);
   node.read_choice("region_method", options.region_method, region_method_choices());
+  node.read_choice("motion_model", options.motion_model, motion_model_names());
   for (const auto& f : double_fields()) node.read(f.key, options.*(f.member), f.min, f.max);
   for (const auto& f : int_fields()) node.read(f.key, options.*(f.member), f.min, f.max);
   if (options.confirm_hits > options.confirm_window) {
@@ -115,6 +118,10 @@ void validate(const TrackerOptions& options) {
   bool known_method = false;
   for (const auto& choice : region_method_choices()) known_method = known_method || choice == options.region_method;
   if (!known_method) throw InvalidArgument("tracking.region_method: unknown value '" + options.region_method + "'");
+  const std::vector<std::string> models = motion_model_names();
+  if (std::find(models.begin(), models.end(), options.motion_model) == models.end()) {
+    throw InvalidArgument("tracking.motion_model: unknown value '" + options.motion_model + "'");
+  }
   for (const auto& f : double_fields()) {
     const double v = options.*(f.member);
     if (!std::isfinite(v) || v < f.min || v > f.max) {

@@ -1,4 +1,4 @@
-#include "uavmot/tracking/updater.hpp"
+#include "updater.hpp"
 
 #include <algorithm>
 #include <cmath>

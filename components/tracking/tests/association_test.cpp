@@ -1,9 +1,9 @@
 // Region gating, the four feature-assignment criteria, outlier removal and measurement reconstruction.
 #include <gtest/gtest.h>
 
-#include "uavmot/tracking/feature_associator.hpp"
-#include "uavmot/tracking/region_associator.hpp"
-#include "uavmot/tracking/split_merge.hpp"
+#include "feature_associator.hpp"
+#include "region_associator.hpp"
+#include "split_merge.hpp"
 
 namespace uavmot::tracking {
 namespace {
@@ -19,6 +19,24 @@ TrackedFeature feature(uint64_t id, cv::Point2d p, cv::Vec2d v, uint32_t age = 5
 }
 
 std::vector<cv::Vec2d> velocities_of(size_t n) { return std::vector<cv::Vec2d>(n, cv::Vec2d(2, 0)); }
+
+// The tracks as split/merge and feature linking see them in a frame: predicted at `predicted` with
+// `velocities` (known), and for linking, updated with a region to the same box.
+std::vector<TrackInFrame> in_frame(const std::vector<TrackRecord>& records, const std::vector<OrientedBox>& predicted,
+                                   const std::vector<cv::Vec2d>& velocities, const std::vector<bool>& known = {}) {
+  std::vector<TrackInFrame> tracks(records.size());
+  for (size_t i = 0; i < records.size(); ++i) {
+    tracks[i].record = records[i];
+    tracks[i].predicted = tracks[i].posterior = predicted[i];
+    tracks[i].velocity = velocities[i];
+    tracks[i].velocity_known = known.empty() || known[i];
+    tracks[i].region_hit = true;
+  }
+  return tracks;
+}
+
+// The limits split/merge handling gets from the scene: `single` object, `largest` object (zero: none).
+ObjectLimits limits(cv::Size2d single = {}, cv::Size2d largest = {}) { return ObjectLimits{single, largest}; }
 
 TEST(RegionAssociation, SmallOverlapValidatesNoOverlapDoesNot) {
   const OrientedBox track{100, 100, 5, 15, 0};
@@ -48,7 +66,9 @@ class FeatureAssignment : public ::testing::Test {
   }
   void link(const std::vector<TrackedFeature>& fs, std::vector<bool> known = {true, true}) {
     const FeatureIndex index(fs);
-    link_new_features(tracks_, predicted_, predicted_, velocities_, known, {true, true}, index, options_);
+    std::vector<TrackInFrame> frame = in_frame(tracks_, predicted_, velocities_, known);
+    link_new_features(frame, index, options_, 0.0);
+    for (size_t i = 0; i < tracks_.size(); ++i) tracks_[i] = frame[i].record;
   }
   std::vector<uint64_t> ids(size_t t) const {
     std::vector<uint64_t> out;
@@ -148,7 +168,9 @@ TEST(SplitMerge, MergedRegionIsReplacedByFeatureReconstructions) {
                                feature(3, {107, 106}, {1, 0}), feature(4, {101, 106}, {1, 0})});
   const std::vector<OrientedBox> regions = {enclosing_box(predicted)};
   const RegionAssociation a = associate_regions(regions, predicted, 0.05);
-  const SplitMergeResult r = resolve_split_merge(a, regions, tracks, predicted, velocities_of(tracks.size()), {}, features, TrackerOptions{});
+  const SplitMergeResult r =
+      resolve_split_merge(a, regions, in_frame(tracks, predicted, velocities_of(tracks.size())),
+                          features, TrackerOptions{}, limits());
   ASSERT_EQ(r.measurements[0].kind, MeasurementKind::Centre);
   ASSERT_EQ(r.measurements[1].kind, MeasurementKind::Centre);
   EXPECT_NEAR(r.measurements[0].centre.x, 100.5, 1e-9);
@@ -166,7 +188,9 @@ TEST(SplitMerge, SplitKeepsTheRegionTheFeaturesFollowAndFreesTheOther) {
                                feature(3, {108, 100}, {3.5, 0})});
   const std::vector<OrientedBox> regions = {{92, 100, 5, 14, 0}, {108, 100, 5, 14, 0}};
   const RegionAssociation a = associate_regions(regions, predicted, 0.05);
-  const SplitMergeResult r = resolve_split_merge(a, regions, tracks, predicted, velocities_of(tracks.size()), {}, features, TrackerOptions{});
+  const SplitMergeResult r =
+      resolve_split_merge(a, regions, in_frame(tracks, predicted, velocities_of(tracks.size())),
+                          features, TrackerOptions{}, limits());
   ASSERT_EQ(r.measurements[0].kind, MeasurementKind::Box);
   EXPECT_EQ(r.measurements[0].box, regions[0]);
   EXPECT_EQ(r.free_regions, (std::vector<int>{1}));
@@ -182,11 +206,13 @@ TEST(SplitMerge, FragmentsNeverMakeABoxLargerThanTheLargestObject) {
   const std::vector<OrientedBox> regions = {{100, 97, 6, 14, 0}, {100, 106, 5, 13, 0}};
   const RegionAssociation a = associate_regions(regions, predicted, 0.05);
   const SplitMergeResult unbounded =
-      resolve_split_merge(a, regions, tracks, predicted, velocities_of(1), {}, features, TrackerOptions{});
+      resolve_split_merge(a, regions, in_frame(tracks, predicted, velocities_of(1)),
+                          features, TrackerOptions{}, limits());
   ASSERT_EQ(unbounded.measurements[0].kind, MeasurementKind::Box);
   EXPECT_GT(unbounded.measurements[0].box.width, 13.0);  // the two merged: 14.5 px wide
-  const SplitMergeResult bounded = resolve_split_merge(a, regions, tracks, predicted, velocities_of(1), {}, features,
-                                                       TrackerOptions{}, cv::Size2d(11.4, 38.6));
+  const SplitMergeResult bounded =
+      resolve_split_merge(a, regions, in_frame(tracks, predicted, velocities_of(1)),
+                          features, TrackerOptions{}, limits({}, cv::Size2d(11.4, 38.6)));
   ASSERT_EQ(bounded.measurements[0].kind, MeasurementKind::Box);
   EXPECT_LT(bounded.measurements[0].box.width, 6.5);
   EXPECT_EQ(bounded.free_regions.size(), 1u);
@@ -198,7 +224,9 @@ TEST(SplitMerge, FragmentsWithTheSameMotionAreOneMeasurement) {
   const FeatureIndex features({feature(1, {96, 100}, {2, 0}), feature(2, {104, 100}, {2.05, 0})});
   const std::vector<OrientedBox> regions = {{96.5, 100, 5, 7, 0}, {103.5, 100, 5, 7, 0}};
   const RegionAssociation a = associate_regions(regions, predicted, 0.05);
-  const SplitMergeResult r = resolve_split_merge(a, regions, tracks, predicted, velocities_of(tracks.size()), {}, features, TrackerOptions{});
+  const SplitMergeResult r =
+      resolve_split_merge(a, regions, in_frame(tracks, predicted, velocities_of(tracks.size())),
+                          features, TrackerOptions{}, limits());
   ASSERT_EQ(r.measurements[0].kind, MeasurementKind::Box);
   EXPECT_NEAR(r.measurements[0].box.cx, 100.0, 1e-3);
   EXPECT_NEAR(r.measurements[0].box.length, 14.0, 1e-3);
@@ -222,18 +250,24 @@ TEST(SplitMerge, OneObjectTrackedInPiecesIsAbsorbedIntoTheSeniorTrack) {
   const std::vector<OrientedBox> regions = {{100, 100, 5, 15, 0}};                      // the whole car
   const FeatureIndex none({});
   const RegionAssociation a = associate_regions(regions, predicted, 0.05);
-  const SplitMergeResult r = resolve_split_merge(a, regions, tracks, predicted, velocities_of(2), {8.0, 20.0}, none, TrackerOptions{});
+  const SplitMergeResult r =
+      resolve_split_merge(a, regions, in_frame(tracks, predicted, velocities_of(2)),
+                          none, TrackerOptions{}, limits(cv::Size2d(8.0, 20.0)));
   ASSERT_EQ(r.measurements[0].kind, MeasurementKind::Box);
   EXPECT_TRUE(r.absorbed[1]);
   EXPECT_FALSE(r.absorbed[0]);
   // The same region shared by two cars moving differently is a merge, nobody is absorbed.
   std::vector<cv::Vec2d> different = {cv::Vec2d(2, 0), cv::Vec2d(0.5, 0)};
-  const SplitMergeResult m = resolve_split_merge(a, regions, tracks, predicted, different, {8.0, 20.0}, none, TrackerOptions{});
+  const SplitMergeResult m =
+      resolve_split_merge(a, regions, in_frame(tracks, predicted, different),
+                          none, TrackerOptions{}, limits(cv::Size2d(8.0, 20.0)));
   EXPECT_FALSE(m.absorbed[0] || m.absorbed[1]);
   // A region larger than one object (two cars side by side) is a merge too.
   const std::vector<OrientedBox> wide = {{100, 100, 11, 15, 0}};
   const RegionAssociation aw = associate_regions(wide, predicted, 0.05);
-  const SplitMergeResult w = resolve_split_merge(aw, wide, tracks, predicted, velocities_of(2), {8.0, 20.0}, none, TrackerOptions{});
+  const SplitMergeResult w =
+      resolve_split_merge(aw, wide, in_frame(tracks, predicted, velocities_of(2)),
+                          none, TrackerOptions{}, limits(cv::Size2d(8.0, 20.0)));
   EXPECT_FALSE(w.absorbed[0] || w.absorbed[1]);
 }
 
@@ -251,11 +285,13 @@ TEST(SplitMerge, TwoCarsSideBySideAreNotPiecesOfOne) {
   const cv::Size2d one_car(8.0, 20.0), largest_vehicle(11.0, 40.0);
   const FeatureIndex none({});
   const SplitMergeResult r =
-      resolve_split_merge(a, regions, tracks, predicted, velocities_of(2), one_car, none, TrackerOptions{}, largest_vehicle);
+      resolve_split_merge(a, regions, in_frame(tracks, predicted, velocities_of(2)),
+                          none, TrackerOptions{}, limits(one_car, largest_vehicle));
   EXPECT_FALSE(r.absorbed[0] || r.absorbed[1]);
   // Without a bound on the largest vehicle, the two would be taken for pieces of one.
   const SplitMergeResult unbounded =
-      resolve_split_merge(a, regions, tracks, predicted, velocities_of(2), one_car, none, TrackerOptions{});
+      resolve_split_merge(a, regions, in_frame(tracks, predicted, velocities_of(2)),
+                          none, TrackerOptions{}, limits(one_car));
   EXPECT_TRUE(unbounded.absorbed[1]);
 }
 
@@ -268,7 +304,9 @@ TEST(SplitMerge, TentativeTrackDoesNotTurnARegionIntoAMerge) {
   const FeatureIndex none({});
   const RegionAssociation a = associate_regions(regions, predicted, 0.05);
   ASSERT_EQ(a.tracks_of_region[0].size(), 2u);
-  const SplitMergeResult r = resolve_split_merge(a, regions, tracks, predicted, velocities_of(tracks.size()), {}, none, TrackerOptions{});
+  const SplitMergeResult r =
+      resolve_split_merge(a, regions, in_frame(tracks, predicted, velocities_of(tracks.size())),
+                          none, TrackerOptions{}, limits());
   ASSERT_EQ(r.measurements[0].kind, MeasurementKind::Box);
   EXPECT_EQ(r.measurements[0].box, regions[0]);
   EXPECT_EQ(r.measurements[1].kind, MeasurementKind::None);

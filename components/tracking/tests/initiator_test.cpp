@@ -1,8 +1,8 @@
 // Track initiation: which free regions start tracks (initiator.hpp).
 #include <gtest/gtest.h>
 
-#include "uavmot/tracking/initiator.hpp"
-#include "uavmot/tracking/kalman_model.hpp"
+#include "initiator.hpp"
+#include "kalman_model.hpp"
 
 namespace uavmot::tracking {
 namespace {
@@ -25,7 +25,8 @@ TrackerState one_trailer(TrackState state = TrackState::Confirmed) {
 
 size_t started_after(TrackerState state, const OrientedBox& region) {
   const std::vector<OrientedBox> live = {OrientedBox{100, 100, 7, 15, 0}};
-  initiate_tracks({0}, {region}, live, FeatureIndex({}), TrackerOptions{}, kScene, state);
+  const FrameInput input{identity_homography(), {region}, FeatureIndex({}), cv::Size()};
+  initiate_tracks({0}, input, live, TrackerOptions{}, kScene, state);
   return state.tracks.size() - 1;
 }
 

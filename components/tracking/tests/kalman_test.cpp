@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "uavmot/tracking/predictor.hpp"
-#include "uavmot/tracking/updater.hpp"
+#include "predictor.hpp"
+#include "updater.hpp"
 
 namespace uavmot::tracking {
 namespace {

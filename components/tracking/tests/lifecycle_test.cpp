@@ -1,7 +1,7 @@
 // Track lifecycle: confirmation, coasting, dormancy, deletion (deleter.hpp).
 #include <gtest/gtest.h>
 
-#include "uavmot/tracking/deleter.hpp"
+#include "deleter.hpp"
 
 namespace uavmot::tracking {
 namespace {
@@ -92,20 +92,17 @@ TEST(Lifecycle, AnEstablishedTrackBridgesShortGapsInsideTheView) {
 }
 
 TEST(Lifecycle, WhollyInsideViewNeedsEveryCorner) {
-  TrackerOptions o;
-  EXPECT_TRUE(wholly_inside_view(OrientedBox{-100, -100, 5, 15, 0}, o));  // image size unknown
-  o.image_width = 200;
-  o.image_height = 100;
-  EXPECT_TRUE(wholly_inside_view(OrientedBox{100, 50, 5, 15, 0}, o));
-  EXPECT_FALSE(wholly_inside_view(OrientedBox{195, 50, 5, 15, 0}, o));  // centre inside, nose outside
+  EXPECT_TRUE(wholly_inside_view(OrientedBox{-100, -100, 5, 15, 0}, cv::Size()));  // image size unknown
+  const cv::Size image(200, 100);
+  EXPECT_TRUE(wholly_inside_view(OrientedBox{100, 50, 5, 15, 0}, image));
+  EXPECT_FALSE(wholly_inside_view(OrientedBox{195, 50, 5, 15, 0}, image));  // centre inside, nose outside
 }
 
 TEST(Lifecycle, LeavingTheViewHidesAtOnce) {
   TrackerOptions o;
-  o.image_width = 100;
-  o.image_height = 80;
-  EXPECT_TRUE(inside_view(OrientedBox{50, 40, 5, 15, 0}, o));
-  EXPECT_FALSE(inside_view(OrientedBox{101, 40, 5, 15, 0}, o));
+  const cv::Size image(100, 80);
+  EXPECT_TRUE(inside_view(OrientedBox{50, 40, 5, 15, 0}, image));
+  EXPECT_FALSE(inside_view(OrientedBox{101, 40, 5, 15, 0}, image));
   TrackRecord t = new_track();
   t.state = TrackState::Confirmed;
   EXPECT_EQ(decide_fate(t, false, o), Fate::Dormant);

@@ -35,6 +35,7 @@ TEST(TrackerOptions, RejectsBadValuesNamingTheKey) {
   expect_error("max_features_per_track: -3\n", "max_features_per_track");
   expect_error("min_intersection_fraction: 2.0\n", "min_intersection_fraction");
   expect_error("region_method: magic\n", "region_method");
+  expect_error("motion_model: magic\n", "motion_model");
   expect_error("max_coast_frame: 3\n", "max_coast_frame");  // typo
   expect_error("process_accel_sigma_px: fast\n", "process_accel_sigma_px");
   expect_error("confirm_hits: 6\nconfirm_window: 4\n", "confirm_hits");

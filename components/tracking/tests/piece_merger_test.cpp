@@ -3,7 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "synthetic_scene.hpp"
-#include "uavmot/tracking/piece_merger.hpp"
+#include "piece_merger.hpp"
 
 namespace uavmot::tracking::testing {
 namespace {

@@ -5,7 +5,7 @@
 #include <functional>
 #include <numeric>
 
-#include "uavmot/tracking/split_merge.hpp"
+#include "split_merge.hpp"
 
 namespace uavmot::tracking::testing {
 

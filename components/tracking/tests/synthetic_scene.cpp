@@ -6,7 +6,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "uavmot/tracking/split_merge.hpp"
+#include "split_merge.hpp"
 
 namespace uavmot::tracking::testing {
 

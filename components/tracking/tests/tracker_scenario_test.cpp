@@ -211,10 +211,11 @@ TEST(TrackerScenario, VehicleLeavingAndReenteringTheView) {
   };
   SyntheticScene scene({car(1, {200, 240}, {1.0, 0.2})}, pan);
   Tracker tracker;
-  tracker.set_image_size(SceneOptions{}.image_width, SceneOptions{}.image_height);  // as the pipeline does
   std::vector<std::pair<int, uint64_t>> visible_ids;  // (frame, id) while visible
   for (int k = 1; k <= 130; ++k) {
-    const SyntheticFrame f = scene.next();
+    SyntheticFrame f = scene.next();
+    f.motion.image_width = SceneOptions{}.image_width;  // as the motion layer reports it
+    f.motion.image_height = SceneOptions{}.image_height;
     const TrackList out = tracker.process(f.motion, f.segmentation);
     for (const auto& t : out.tracks) {
       // Never a track far outside the view while nothing is there.
@@ -237,6 +238,32 @@ TEST(TrackerScenario, VehicleLeavingAndReenteringTheView) {
   EXPECT_GT(visible_ids.back().first, 110);
 }
 
+TEST(TrackerScenario, TheImageSizeComesWithTheMotionEstimate) {
+  // The motion estimate's size wins over TrackerOptions', which is the fallback for input without one.
+  SceneOptions opts;
+  opts.image_width = 300;
+  opts.image_height = 200;
+  auto reported_outside = [&](int options_width, int motion_width) {
+    SyntheticScene scene({car(1, {200, 100}, {3.0, 0.0})}, static_camera(), opts);
+    TrackerOptions o;
+    o.image_width = options_width;
+    o.image_height = opts.image_height;
+    Tracker tracker(o);
+    int outside = 0;
+    for (int k = 1; k <= 60; ++k) {
+      SyntheticFrame f = scene.next();
+      f.motion.image_width = motion_width;
+      f.motion.image_height = motion_width > 0 ? opts.image_height : 0;
+      for (const auto& t : tracker.process(f.motion, f.segmentation).tracks) outside += t.box.cx > opts.image_width;
+    }
+    return outside;
+  };
+  EXPECT_EQ(reported_outside(0, opts.image_width), 0);      // from the motion estimate
+  EXPECT_EQ(reported_outside(opts.image_width, 0), 0);      // the options' fallback
+  EXPECT_EQ(reported_outside(1000, opts.image_width), 0);  // both known: the estimate's
+  EXPECT_GT(reported_outside(1000, 0), 0);  // a wrong fallback lets it coast out of the real image
+}
+
 TEST(TrackerScenario, TrackLeavingTheImageIsNotReportedOutsideIt) {
   // Knowing the image size, a track is hidden as soon as its centre leaves the image, instead of
   // coasting outside it.
@@ -246,10 +273,13 @@ TEST(TrackerScenario, TrackLeavingTheImageIsNotReportedOutsideIt) {
   for (const bool image_known : {false, true}) {
     SyntheticScene scene({car(1, {200, 100}, {3.0, 0.0})}, static_camera(), opts);
     Tracker tracker;
-    if (image_known) tracker.set_image_size(opts.image_width, opts.image_height);
     int outside_reported = 0;
     for (int k = 1; k <= 60; ++k) {
-      const SyntheticFrame f = scene.next();
+      SyntheticFrame f = scene.next();
+      if (image_known) {  // the size comes with the motion estimate
+        f.motion.image_width = opts.image_width;
+        f.motion.image_height = opts.image_height;
+      }
       for (const auto& t : tracker.process(f.motion, f.segmentation).tracks) {
         outside_reported += (t.box.cx > opts.image_width) ? 1 : 0;
       }

@@ -6,12 +6,16 @@
 //   uavmot::tracking::Tracker tracker(options, scene);
 //   for (...) { TrackList tracks = tracker.process(motion_estimate, segmentation_result); }
 
+#include <memory>
+
 #include "uavmot/core/chain_types.hpp"
 #include "uavmot/core/scene_info.hpp"
 #include "uavmot/tracking/tracker_options.hpp"
 #include "uavmot/tracking/tracker_state.hpp"
 
 namespace uavmot::tracking {
+
+struct TrackerStages;  // the steps of one frame behind small interfaces (src/stages.hpp)
 
 class Tracker {
  public:
@@ -21,12 +25,9 @@ class Tracker {
   // One frame: predict with the homography, assign regions and features, handle split and merge,
   // update, start, confirm and delete tracks. Non-finite homographies, regions and features are
   // ignored (counted in state()). Returns tentative, confirmed and coasting tracks, ascending id.
+  // The image size comes with the motion estimate (image_width/height; TrackerOptions' as the
+  // fallback when it carries none): a track whose centre leaves the image is hidden at once.
   TrackList process(const MotionEstimate& motion, const SegmentationResult& segmentation);
-
-  // The image size, when it becomes known after construction (e.g. from the first frame): tracks
-  // whose centre leaves the image are then hidden instead of coasting outside it. Same as setting
-  // TrackerOptions::image_width/height; non-positive values mean unknown.
-  void set_image_size(int width, int height);
 
   TrackerState state() const { return state_; }
   // Throws uavmot::InvalidArgument for a state that is not self-consistent (e.g. non-finite values).
@@ -37,6 +38,7 @@ class Tracker {
  private:
   TrackerOptions options_;
   SceneInfo scene_;
+  std::shared_ptr<const TrackerStages> stages_;  // stateless, chosen from options_ (src/stages.hpp)
   TrackerState state_;
 };
 

@@ -16,7 +16,10 @@ struct TrackerOptions {
   // "all": every region; or one method name (clustering, korn, morphological, lbp, fusion).
   std::string region_method = "auto";
 
-  // --- Kalman filter (kalman_model, predictor, updater) ------------------------------------
+  // --- Kalman filter (kalman_model, motion_model, updater) ---------------------------------
+  // The motion model (predictor) by name: "homography_cv", constant ground velocity with the
+  // homography as control input (the paper). The list is in src/motion_model.cpp.
+  std::string motion_model = "homography_cv";
   double process_accel_sigma_px = 0.08;     // white-noise acceleration, px/frame^2
   double process_size_sigma_px = 0.05;      // random walk of width and length, px/frame
   double process_angle_sigma_deg = 1.0;     // random walk of the axis angle, deg/frame
@@ -116,9 +119,11 @@ struct TrackerOptions {
   double reacquire_lateral_m = 1.0;         // across the track's axis (a car in the next lane is not it)
   double reacquire_size_ratio = 1.6;        // max ratio between the region's and the track's length/width
 
-  // --- The image (set by the pipeline from the source; 0 = unknown) --------------------------
-  // A track whose predicted centre leaves the image stops being reported at once: a confirmed one
-  // goes dormant (re-acquirable if the view comes back), a tentative one is deleted.
+  // --- The image (0 = unknown) ----------------------------------------------------------------
+  // A track whose centre leaves the image stops being reported at once: a confirmed one goes dormant
+  // (re-acquirable if the view comes back), a tentative one is deleted. The size comes with each
+  // motion estimate (MotionEstimate::image_width/height); these are used only for input that
+  // carries none.
   int image_width = 0;
   int image_height = 0;
 };

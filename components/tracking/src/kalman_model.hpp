@@ -35,6 +35,10 @@ struct BoxMeasurementNoise {
 };
 
 ProcessNoise process_noise(const TrackerOptions& options);
+
+// Q for one frame (dt = 1): piecewise-constant white acceleration on centre and velocity per axis,
+// random walk on width, length and angle.
+StateCovariance process_noise_covariance(const ProcessNoise& noise);
 BoxMeasurementNoise box_measurement_noise(const TrackerOptions& options);
 
 // A new track from a region: position and size from the box, velocity from `velocity` with

@@ -6,7 +6,7 @@
 // Jacobian of this whole transition (an extended Kalman filter), plus process noise.
 
 #include "uavmot/core/homography.hpp"
-#include "uavmot/tracking/kalman_model.hpp"
+#include "kalman_model.hpp"
 
 namespace uavmot::tracking {
 

@@ -9,16 +9,16 @@
 #include <vector>
 
 #include "uavmot/core/scene_info.hpp"
-#include "uavmot/tracking/feature_associator.hpp"
+#include "frame_input.hpp"
 #include "uavmot/tracking/tracker_options.hpp"
 #include "uavmot/tracking/tracker_state.hpp"
 
 namespace uavmot::tracking {
 
-// Starts or re-acquires tracks for `free_regions` (indices into `regions`) and appends them to
+// Starts or re-acquires tracks for `free_regions` (indices into input.regions) and appends them to
 // state.tracks; `live_boxes` are the current boxes of the tracks already in state.tracks.
-void initiate_tracks(const std::vector<int>& free_regions, const std::vector<OrientedBox>& regions,
-                     const std::vector<OrientedBox>& live_boxes, const FeatureIndex& features,
-                     const TrackerOptions& options, const SceneInfo& scene, TrackerState& state);
+void initiate_tracks(const std::vector<int>& free_regions, const FrameInput& input,
+                     const std::vector<OrientedBox>& live_boxes, const TrackerOptions& options, const SceneInfo& scene,
+                     TrackerState& state);
 
 }  // namespace uavmot::tracking

@@ -10,7 +10,8 @@
 #include <vector>
 
 #include "uavmot/core/chain_types.hpp"
-#include "uavmot/tracking/spatial_grid.hpp"
+#include "spatial_grid.hpp"
+#include "track_in_frame.hpp"
 #include "uavmot/tracking/tracker_options.hpp"
 #include "uavmot/tracking/tracker_state.hpp"
 
@@ -67,14 +68,13 @@ std::optional<cv::Vec2d> median_velocity_of(const std::vector<const TrackedFeatu
 // Median velocity of the track's linked features present this frame; nullopt with fewer than min_features.
 std::optional<cv::Vec2d> linked_velocity(const TrackRecord& track, const FeatureIndex& features, int min_features);
 
-// Links new features to tracks by the four criteria. `predicted` are the tracks' predictions
-// (criteria 2, 3), `posterior` their boxes after the update (stored box positions); only tracks with
-// may_link[i] get new features. `velocity_known[i]`: compare with the track's velocity, else with the
-// median motion of the candidates.
-void link_new_features(std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
-                       const std::vector<OrientedBox>& posterior, const std::vector<cv::Vec2d>& velocities,
-                       const std::vector<bool>& velocity_known, const std::vector<bool>& may_link,
-                       const FeatureIndex& features, const TrackerOptions& options);
+// Links new features to the tracks updated with a region (region_hit) by the four criteria. Criteria
+// 2 and 3 look in the predictions, lengthened for a track under way (velocity known, at least
+// heading_min_speed_px) to `min_search_length_px` at least: a vehicle's blob may be a part of it, its
+// other features lie within a vehicle length. A link stores where the feature sits on the posterior
+// box. The velocity compared with is the track's when known, else the candidates' median motion.
+void link_new_features(std::vector<TrackInFrame>& tracks, const FeatureIndex& features, const TrackerOptions& options,
+                       double min_search_length_px);
 
 // After an unambiguous region update, lets the stored box positions follow the new box slowly.
 void refresh_feature_links(TrackRecord& track, const OrientedBox& posterior, const FeatureIndex& features,

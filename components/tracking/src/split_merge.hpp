@@ -8,26 +8,27 @@
 //    height along; zero = no limit); otherwise the track keeps the region its features follow and
 //    the others are free to start new tracks.
 // A tentative track's claim on a region that an established track also validates is dropped first.
-// A shared region no larger than one object (`max_object_size_px`: width across, height along) whose
-// tracks move alike is one object tracked in pieces: the senior track (most hits) keeps it and the
-// others are absorbed (deleted). Zero size disables this.
+// A shared region no larger than one object whose tracks move alike is one object tracked in pieces:
+// the senior track (most hits) keeps it and the others are absorbed (deleted).
 
 #include <vector>
 
-#include "uavmot/tracking/feature_associator.hpp"
-#include "uavmot/tracking/region_associator.hpp"
+#include "feature_associator.hpp"
+#include "region_associator.hpp"
+#include "track_in_frame.hpp"
+#include "uavmot/core/scene_info.hpp"
 
 namespace uavmot::tracking {
 
-enum class MeasurementKind { None, Box, Centre };
-
-struct TrackMeasurement {
-  MeasurementKind kind = MeasurementKind::None;
-  OrientedBox box;       // kind == Box
-  cv::Point2d centre;    // kind == Centre
-  bool merged = false;   // in a merge this frame: its features must not be relearnt from this box
-  bool size_jump = false;  // split off other regions or absorbed pieces: its size may change abruptly
+// Object sizes in px, width across and height along (zero = no limit).
+struct ObjectLimits {
+  cv::Size2d single_object;  // a shared region within this holds one object tracked in pieces
+  cv::Size2d largest_object;  // no box assembled from fragments (or pieces of a vehicle) is larger
 };
+
+// single_object_size_factor x the scene's vehicle; max_object_width_m x max_object_length_factor
+// vehicle lengths.
+ObjectLimits object_limits(const TrackerOptions& options, const SceneInfo& scene);
 
 struct SplitMergeResult {
   std::vector<TrackMeasurement> measurements;  // one per track
@@ -41,10 +42,9 @@ bool region_motion(const OrientedBox& box, const FeatureIndex& features, cv::Vec
 // The smallest oriented box around all of `boxes`.
 OrientedBox enclosing_box(const std::vector<OrientedBox>& boxes);
 
+// Reads each track's record, predicted box and velocity.
 SplitMergeResult resolve_split_merge(const RegionAssociation& gating, const std::vector<OrientedBox>& regions,
-                                     const std::vector<TrackRecord>& tracks, const std::vector<OrientedBox>& predicted,
-                                     const std::vector<cv::Vec2d>& velocities, const cv::Size2d& max_object_size_px,
-                                     const FeatureIndex& features, const TrackerOptions& options,
-                                     const cv::Size2d& largest_object_px = {});
+                                     const std::vector<TrackInFrame>& tracks, const FeatureIndex& features,
+                                     const TrackerOptions& options, const ObjectLimits& limits);
 
 }  // namespace uavmot::tracking

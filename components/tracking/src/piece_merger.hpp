@@ -15,8 +15,9 @@
 #include <vector>
 
 #include "uavmot/core/scene_info.hpp"
-#include "uavmot/tracking/feature_associator.hpp"
-#include "uavmot/tracking/kalman_model.hpp"
+#include "feature_associator.hpp"
+#include "kalman_model.hpp"
+#include "track_in_frame.hpp"
 #include "uavmot/tracking/tracker_options.hpp"
 #include "uavmot/tracking/tracker_state.hpp"
 
@@ -27,12 +28,10 @@ namespace uavmot::tracking {
 bool are_pieces_of_one_object(const OrientedBox& a, const cv::Vec2d& motion_a, const OrientedBox& b,
                               const cv::Vec2d& motion_b, const TrackerOptions& options, const SceneInfo& scene);
 
-// Merges pieces among the tracks with a region hit in this frame (`measured`) whose posterior box
-// holds moving features. `kalman` holds the posteriors and is updated for the keepers; returns, per
-// track, whether it was absorbed. Each track takes part in at most one merge per frame, pairs in
-// index order.
-std::vector<bool> merge_track_pieces(const std::vector<TrackRecord>& tracks, std::vector<KalmanState>& kalman,
-                                     const std::vector<bool>& measured, const FeatureIndex& features,
-                                     const TrackerOptions& options, const SceneInfo& scene);
+// Merges pieces among the tracks with a region hit in this frame whose posterior box (track.kalman)
+// holds moving features: the keeper's posterior is updated with the box around both, the other is
+// marked absorbed. Each track takes part in at most one merge per frame, pairs in index order.
+void merge_track_pieces(std::vector<TrackInFrame>& tracks, const FeatureIndex& features, const TrackerOptions& options,
+                        const SceneInfo& scene);
 
 }  // namespace uavmot::tracking

@@ -5,7 +5,7 @@
 // width/length labelling is swapped relative to the track (a near-square box reported with the other
 // side as length) is relabelled before the update.
 
-#include "uavmot/tracking/kalman_model.hpp"
+#include "kalman_model.hpp"
 
 namespace uavmot::tracking {
 

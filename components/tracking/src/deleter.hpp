@@ -6,6 +6,8 @@
 // `tentative_max_misses` frames in a row, or fail to confirm in time, are deleted at once. An
 // established track (`gap_min_hits`) missing up to `gap_frames` in a row is still reported confirmed.
 
+#include <opencv2/core/types.hpp>
+
 #include "uavmot/core/homography.hpp"
 #include "uavmot/tracking/tracker_options.hpp"
 #include "uavmot/tracking/tracker_state.hpp"
@@ -14,11 +16,11 @@ namespace uavmot::tracking {
 
 enum class Fate { Keep, Dormant, Delete };
 
-// False when the image size is known and the box centre lies outside the image.
-bool inside_view(const OrientedBox& box, const TrackerOptions& options);
+// False when the image size is known (both sides positive) and the box centre lies outside the image.
+bool inside_view(const OrientedBox& box, const cv::Size& image);
 
 // True unless the image size is known and a corner of the box lies outside the image.
-bool wholly_inside_view(const OrientedBox& box, const TrackerOptions& options);
+bool wholly_inside_view(const OrientedBox& box, const cv::Size& image);
 
 // Records one frame in the track's history: a region hit, support by features only, or nothing.
 // An established track that misses a frame stays confirmed for `gap_frames` when `may_bridge_gap`

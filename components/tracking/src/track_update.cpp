@@ -1,0 +1,65 @@
+#include "track_update.hpp"
+
+#include <cmath>
+#include <optional>
+
+#include "updater.hpp"
+
+namespace uavmot::tracking {
+namespace {
+
+// The linked features' own motion: their median velocity updates the track's velocity and, for a
+// vehicle under way, its direction names the box's axis. Returns that heading (deg), if any.
+std::optional<double> update_with_feature_motion(KalmanState& kalman, const std::vector<const TrackedFeature*>& linked,
+                                                 const TrackerOptions& options) {
+  const auto velocity = median_velocity_of(linked, options.min_reconstruction_features);
+  if (!velocity) return std::nullopt;
+  if (options.feature_velocity_sigma_px > 0.0) {
+    kalman = update_with_velocity(kalman, *velocity, options.feature_velocity_sigma_px);
+  }
+  if (!(options.heading_sigma_deg > 0.0) || cv::norm(*velocity) < options.heading_min_speed_px) return std::nullopt;
+  const double heading = std::atan2((*velocity)[1], (*velocity)[0]) * 180.0 / M_PI;
+  kalman = update_with_heading(kalman, heading, options.heading_sigma_deg);
+  return heading;
+}
+
+}  // namespace
+
+void update_track(TrackInFrame& track, const FeatureIndex& features, const TrackerOptions& options,
+                  double vehicle_length_px) {
+  const TrackMeasurement& m = track.measurement;
+  const std::vector<const TrackedFeature*> linked = linked_features(track.record, features);
+  const std::optional<double> heading = update_with_feature_motion(track.kalman, linked, options);
+  if (m.kind == MeasurementKind::Box) {
+    OrientedBox box = heading ? box_along_heading(m.box, *heading) : m.box;
+    // A heading means at least min_reconstruction_features linked features are present.
+    if (heading && options.feature_span_margin_px >= 0.0) {
+      std::vector<cv::Point2d> points;
+      for (const TrackedFeature* f : linked) points.push_back(f->position);
+      box = lengthen_to_cover(box, points, options.feature_span_margin_px, vehicle_length_px);
+    }
+    if (m.size_jump) open_size_uncertainty(track.kalman, box);
+    track.kalman = update_with_box(track.kalman, box, box_measurement_noise(options), options.min_box_size_px);
+    track.region_hit = true;
+  } else if (m.kind == MeasurementKind::Centre) {
+    track.kalman = update_with_position(track.kalman, m.centre, options.reconstruction_sigma_px);
+    track.supported = true;
+  } else if (!m.merged) {
+    // Features alone keep a track alive.
+    if (const auto centre =
+            reconstruct_centre(track.record, track.predicted, features, options.min_reconstruction_features)) {
+      track.kalman = update_with_position(track.kalman, *centre, options.reconstruction_sigma_px);
+      track.supported = true;
+    }
+  }
+}
+
+void commit_update(TrackInFrame& track, const FeatureIndex& features, double uv_smoothing) {
+  track.posterior = box_of(track.kalman.mean);
+  store(track.kalman, track.record);
+  // The anchor is the last measured box (region or features), where a stopping vehicle stands.
+  if (track.region_hit || track.supported) track.record.anchor_box = track.posterior;
+  if (track.region_hit) refresh_feature_links(track.record, track.posterior, features, uv_smoothing);
+}
+
+}  // namespace uavmot::tracking
