@@ -117,11 +117,16 @@ int run_live_view(LiveViewOptions o) {
     }
   };
 
-  while (!shutdown_requested() && !user_closed) {
+  auto take_all = [&]() {
     bool any = take_frames();
     any |= drain(motion, [&](MotionEstimate m) { joiner.add_motion(std::move(m)); }, [] {});
     any |= drain(segmentation, [&](SegmentationResult s) { joiner.add_segmentation(std::move(s)); }, [] {});
     any |= drain(tracks, [&](TrackList t) { joiner.add_tracks(std::move(t)); }, [&] { tracks_ended = true; });
+    return any;
+  };
+
+  while (!shutdown_requested() && !user_closed) {
+    const bool any = take_all();
     show(joiner.pop_ready());
     health.set_queue_depth(static_cast<uint32_t>(joiner.pending()));
     health.tick();
@@ -143,7 +148,10 @@ int run_live_view(LiveViewOptions o) {
       }
     }
   }
-  // Whatever is still buffered is drawn, so the video has every frame that arrived.
+  // Stopped (`uavmot launch` stops the view once the sink has finished): results that arrived but
+  // were not taken yet still join their frames. Then whatever is buffered is drawn, so the video
+  // has every frame that arrived.
+  if (!user_closed) take_all();
   show(joiner.flush());
   if (video) {
     video->close();
