@@ -11,7 +11,7 @@
 #include "tracksPubSubTypes.h"
 #include "uavmot/dds/chain_convert.hpp"
 #include "uavmot/mcap/writer.hpp"
-#include "uavmot/record/cdr_payload.hpp"
+#include "uavmot/dds/cdr_sample.hpp"
 #include "uavmot/record/topic_catalog.hpp"
 
 int main(int argc, char** argv) {
@@ -59,8 +59,8 @@ int main(int argc, char** argv) {
       tracks.tracks = {track};
       auto t = dds::to_msg(tracks);
       const uint64_t time = 1'000'000'000ull * static_cast<uint64_t>(k);
-      const auto motion_cdr = record::to_cdr(motion_type, m);
-      const auto tracks_cdr = record::to_cdr(tracks_type, t);
+      const auto motion_cdr = dds::to_cdr(motion_type, m);
+      const auto tracks_cdr = dds::to_cdr(tracks_type, t);
       writer.write(motion_channel, static_cast<uint32_t>(k), time, time, motion_cdr.data(), motion_cdr.size());
       writer.write(tracks_channel, static_cast<uint32_t>(k), time + 1, time + 1, tracks_cdr.data(), tracks_cdr.size());
     }

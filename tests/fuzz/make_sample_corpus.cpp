@@ -6,8 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <string>
+#include <vector>
 
-#include <fastdds/rtps/common/SerializedPayload.h>
 #include <opencv2/imgcodecs.hpp>
 
 #include "downlinkPubSubTypes.h"
@@ -17,6 +17,7 @@
 #include "tracker_statePubSubTypes.h"
 #include "tracker_state_io.hpp"
 #include "tracksPubSubTypes.h"
+#include "uavmot/dds/cdr_sample.hpp"
 #include "uavmot/dds/chain_convert.hpp"
 #include "uavmot/dds/downlink_convert.hpp"
 #include "uavmot/dds/frame_convert.hpp"
@@ -25,12 +26,10 @@ namespace {
 
 template <class PubSubType>
 void write(const std::string& path, uint8_t selector, typename PubSubType::type sample) {
-  PubSubType type;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(type.getSerializedSizeProvider(&sample)());
-  if (!type.serialize(&sample, &payload)) throw std::runtime_error("cannot serialize " + path);
+  const std::vector<uint8_t> bytes = uavmot::dds::to_cdr<PubSubType>(sample);
   std::ofstream out(path, std::ios::binary | std::ios::trunc);
   out.put(static_cast<char>(selector));
-  out.write(reinterpret_cast<const char*>(payload.data), payload.length);
+  out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
 }
 
 }  // namespace

@@ -8,8 +8,6 @@
 #include <optional>
 #include <string>
 
-#include <fastdds/rtps/common/SerializedPayload.h>
-
 #include "fuzz_targets.hpp"
 #include "downlinkPubSubTypes.h"
 #include "framePubSubTypes.h"
@@ -19,6 +17,7 @@
 #include "tracker_state_io.hpp"
 #include "tracksPubSubTypes.h"
 #include "uavmot/core/error.hpp"
+#include "uavmot/dds/cdr_sample.hpp"
 #include "uavmot/dds/chain_convert.hpp"
 #include "uavmot/dds/downlink_convert.hpp"
 #include "uavmot/dds/frame_convert.hpp"
@@ -28,15 +27,12 @@ namespace {
 
 template <class PubSubType>
 std::optional<typename PubSubType::type> deserialize(const uint8_t* data, size_t size) {
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<uint32_t>(size));
-  std::copy(data, data + size, payload.data);
-  payload.length = static_cast<uint32_t>(size);
   PubSubType type;
   typename PubSubType::type sample;
   try {
-    if (!type.deserialize(&payload, &sample)) return std::nullopt;
-  } catch (...) {
-    return std::nullopt;  // Fast CDR reports truncated input by exception; the reader drops such a sample
+    uavmot::dds::from_cdr(type, data, size, sample, "fuzz input");
+  } catch (const uavmot::InputError&) {
+    return std::nullopt;  // what a reader drops
   }
   return sample;
 }

@@ -20,7 +20,7 @@
 
 #include "child_process.hpp"
 #include "uavmot/mcap/reader.hpp"
-#include "uavmot/record/cdr_payload.hpp"
+#include "uavmot/dds/cdr_sample.hpp"
 #include "uavmot/record/topic_catalog.hpp"
 #include "uavmot/record/typed_topic.hpp"
 #include "uavmot/source/frame_source.hpp"
@@ -59,7 +59,7 @@ std::map<std::string, std::vector<int64_t>> frame_indices(const std::string& fil
       const int64_t index = record::with_topic_type(m.channel->topic, [&]<class P>() -> int64_t {
         P type;
         typename P::type sample;
-        record::from_cdr(type, m.data, m.size, sample, "test");
+        dds::from_cdr(type, m.data, m.size, sample, "test");
         if constexpr (requires { sample.frame_index(); }) {
           return sample.frame_index();
         } else {

@@ -139,9 +139,9 @@ std::optional<SegmentationResult> from_msg(const msg::Segmentation& m, std::stri
     s.clusters.push_back(std::move(c));
   }
   for (const auto& mr : m.regions()) {
-    const auto method = static_cast<uint8_t>(mr.method());
+    const auto method = static_cast<uint64_t>(mr.method());  // all of it: 256 is no method either
     Region r{box_from_msg(mr.box()), static_cast<SegmentationMethod>(method), mr.score(), mr.cluster_id()};
-    if (!sane(r.box) || !finite(r.score) || method > static_cast<uint8_t>(SegmentationMethod::Fusion)) {
+    if (!sane(r.box) || !finite(r.score) || !is_segmentation_method(method)) {
       why = "region with an invalid box, score or method";
       return std::nullopt;
     }

@@ -139,7 +139,7 @@ std::optional<GroundFrame> from_msg(const msg::FrameResults& m, std::string& why
     std::vector<PrintedRegion> regions;
     regions.reserve(m.regions().size());
     for (const auto& mr : m.regions()) {
-      if (mr.width() < 0 || mr.height() < 0 || mr.method() > static_cast<uint8_t>(SegmentationMethod::Fusion)) {
+      if (mr.width() < 0 || mr.height() < 0 || !is_segmentation_method(mr.method())) {
         why = "region with a negative size or an invalid method";
         return std::nullopt;
       }

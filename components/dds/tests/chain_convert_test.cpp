@@ -1,6 +1,10 @@
 #include "uavmot/dds/chain_convert.hpp"
 
+#include <cctype>
 #include <cmath>
+#include <fstream>
+#include <regex>
+#include <sstream>
 
 #include <gtest/gtest.h>
 
@@ -104,12 +108,43 @@ TEST(ChainConvert, MalformedSamplesAreRejectedWithAReason) {
   s.regions = {{{1, 2, -5, 10, 0}, SegmentationMethod::Fusion, 1.0, -1}};
   EXPECT_FALSE(from_msg(to_msg(s), why));
 
+  SegmentationResult unknown_method;
+  unknown_method.frame_index = 1;
+  unknown_method.regions = {{{1, 2, 5, 10, 0}, SegmentationMethod::Fusion, 1.0, -1}};
+  for (uint32_t method : {static_cast<uint32_t>(kSegmentationMethods.size()), 256u}) {  // 256: not cut to a byte
+    auto ms = to_msg(unknown_method);
+    ms.regions()[0].method(static_cast<msg::SegmentationMethod>(method));
+    EXPECT_FALSE(from_msg(ms, why)) << method;
+  }
+
   TrackList t;
   t.frame_index = 1;
   Track bad;
   bad.box = {NAN, 0, 1, 1, 0};
   t.tracks = {bad};
   EXPECT_FALSE(from_msg(to_msg(t), why));
+}
+
+// The wire numbers a method by its place in core's list; the IDL names them for other readers.
+TEST(ChainConvert, IdlListsTheSegmentationMethodsOfCoresList) {
+  std::ifstream idl(UAVMOT_SOURCE_DIR "/idl/segmentation.idl");
+  std::stringstream text;
+  text << idl.rdbuf();
+  const std::string source = text.str();
+  std::smatch block;
+  ASSERT_TRUE(std::regex_search(source, block, std::regex(R"(enum SegmentationMethod \{([^}]*)\})")));
+  std::vector<std::string> idl_names;
+  const std::string body = block[1];
+  const std::regex enumerator(R"([A-Z_0-9]+)");
+  for (std::sregex_iterator it(body.begin(), body.end(), enumerator), end; it != end; ++it) {
+    idl_names.push_back(it->str());
+  }
+  std::vector<std::string> core_names;
+  for (std::string name : segmentation_method_names()) {
+    for (char& c : name) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    core_names.push_back(name);
+  }
+  EXPECT_EQ(idl_names, core_names) << "idl/segmentation.idl and uavmot/core/segmentation_method.hpp disagree";
 }
 
 }  // namespace

@@ -15,7 +15,7 @@
 #include "tracksPubSubTypes.h"
 #include "uavmot/dds/chain_convert.hpp"
 #include "uavmot/mcap/writer.hpp"
-#include "uavmot/record/cdr_payload.hpp"
+#include "uavmot/dds/cdr_sample.hpp"
 #include "uavmot/sim/sequence_writer.hpp"
 
 namespace {
@@ -125,13 +125,13 @@ void write_truth_recording(const std::string& seq, const std::string& path, cons
       motion.quality.valid = frame > 1;
       if (frame > 1) motion.homography = homographies.at(frame);
       auto motion_msg = uavmot::dds::to_msg(motion);
-      const auto motion_bytes = uavmot::record::to_cdr(motion_type, motion_msg);
+      const auto motion_bytes = uavmot::dds::to_cdr(motion_type, motion_msg);
       writer.write(motion_channel, ++sequence, static_cast<uint64_t>(frame) * 1000, 0, motion_bytes.data(), motion_bytes.size());
       if (!with_tracks) continue;
       list.stream_id = stream;
       list.frame_index = frame;
       auto tracks_msg = uavmot::dds::to_msg(list);
-      const auto tracks_bytes = uavmot::record::to_cdr(tracks_type, tracks_msg);
+      const auto tracks_bytes = uavmot::dds::to_cdr(tracks_type, tracks_msg);
       writer.write(tracks_channel, ++sequence, static_cast<uint64_t>(frame) * 1000 + 1, 0, tracks_bytes.data(), tracks_bytes.size());
     }
   }

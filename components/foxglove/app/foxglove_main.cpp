@@ -22,7 +22,7 @@
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/foxglove/schemas.hpp"
 #include "uavmot/foxglove/ws_server.hpp"
-#include "uavmot/record/cdr_payload.hpp"
+#include "uavmot/dds/cdr_sample.hpp"
 #include "uavmot/record/foxglove_translation.hpp"
 #include "uavmot/record/topic_catalog.hpp"
 #include "uavmot/record/typed_topic.hpp"
@@ -118,7 +118,7 @@ class TypedBridge final : public TopicBridge {
       const uint64_t received = wall_ns();
       // Work only for channels somebody watches: with no viewer the bridge costs a take().
       if (server_.has_subscribers(raw_channel_)) {
-        const auto bytes = record::to_cdr(type_, sample_);
+        const auto bytes = dds::to_cdr(type_, sample_);
         server_.publish(raw_channel_, received, bytes.data(), bytes.size());
       }
       if (foxglove_channel_ && server_.has_subscribers(foxglove_channel_) && image_due(received)) {

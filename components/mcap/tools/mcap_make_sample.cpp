@@ -11,13 +11,13 @@
 #include <string>
 #include <vector>
 
-#include <fastdds/rtps/common/SerializedPayload.h>
 #include <nlohmann/json.hpp>
 
 #include "framePubSubTypes.h"
 #include "motionPubSubTypes.h"
 #include "tracksPubSubTypes.h"
 #include "uavmot/core/error.hpp"
+#include "uavmot/dds/cdr_sample.hpp"
 #include "uavmot/mcap/idl_schema.hpp"
 #include "uavmot/mcap/recover.hpp"
 #include "uavmot/mcap/writer.hpp"
@@ -30,14 +30,6 @@ using namespace uavmot;
 constexpr int kFrames = 12;
 constexpr uint64_t kStartNs = 1'700'000'000'000'000'000ull;
 constexpr uint64_t kPeriodNs = 33'333'333;
-
-template <typename PubSubType, typename T>
-std::vector<uint8_t> to_wire(T& sample) {
-  PubSubType type;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(type.getSerializedSizeProvider(&sample)());
-  if (!type.serialize(&sample, &payload)) throw std::runtime_error("CDR serialization failed");
-  return {payload.data, payload.data + payload.length};
-}
 
 uavmot::msg::TrackList make_tracks(int i, json& expected) {
   uavmot::msg::TrackList list;
@@ -168,15 +160,15 @@ void write_sample(const std::string& path, mcap::Compression compression, const 
     const uint64_t t = kStartNs + i * kPeriodNs;
     json e;
     auto frame = make_frame(i, e);
-    auto bytes = to_wire<uavmot::msg::FramePubSubType>(frame);
+    auto bytes = uavmot::dds::to_cdr<uavmot::msg::FramePubSubType>(frame);
     writer.write(channels[1], static_cast<uint32_t>(i), t, t + 1000, bytes.data(), bytes.size());
     expected["topics"]["uavmot/frames"]["messages"].push_back(e);
     auto motion = make_motion(i, e);
-    bytes = to_wire<uavmot::msg::MotionEstimatePubSubType>(motion);
+    bytes = uavmot::dds::to_cdr<uavmot::msg::MotionEstimatePubSubType>(motion);
     writer.write(channels[2], static_cast<uint32_t>(i), t + 5'000'000, t + 5'001'000, bytes.data(), bytes.size());
     expected["topics"]["uavmot/motion"]["messages"].push_back(e);
     auto tracks = make_tracks(i, e);
-    bytes = to_wire<uavmot::msg::TrackListPubSubType>(tracks);
+    bytes = uavmot::dds::to_cdr<uavmot::msg::TrackListPubSubType>(tracks);
     writer.write(channels[0], static_cast<uint32_t>(i), t + 9'000'000, t + 9'001'000, bytes.data(), bytes.size());
     expected["topics"]["uavmot/tracks"]["messages"].push_back(e);
     if (i + 1 == crash_after_frames) {

@@ -4,33 +4,31 @@
 #include <algorithm>
 #include <map>
 
-#include <spdlog/spdlog.h>
-
 #include "framePubSubTypes.h"
 #include "motionPubSubTypes.h"
+#include "uavmot/config/chain_config.hpp"
 #include "uavmot/core/app.hpp"
-#include "uavmot/core/shutdown.hpp"
-#include "uavmot/dds/chain_convert.hpp"
-#include "uavmot/dds/frame_convert.hpp"
-#include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/dds/node_options.hpp"
-#include "uavmot/dds/node_support.hpp"
+#include "uavmot/dds/single_input_node.hpp"
 #include "uavmot/motion/motion_estimator.hpp"
-#include "uavmot/pipeline/chain.hpp"
+#include "uavmot/motion/motion_options.hpp"
 
 namespace uavmot {
 namespace {
 
+// Segmentation and tracking use only the moving features; the rest is most of a sample's bytes.
+void keep_moving_features(msg::MotionEstimate& m) {
+  auto& f = m.features();
+  f.erase(std::remove_if(f.begin(), f.end(), [](const msg::Feature& x) { return !x.moving(); }), f.end());
+}
+
 int motion_main(int argc, char** argv) {
   dds::NodeOptions node;
-  std::string config_file;
-  double gsd_m = 0.0, fps = 0.0;
+  config::NodeConfigArgs config_args;
   int streams = 1;
   std::string features = "all";
   return run_app(argc, argv, "motion", "estimate camera motion and independently moving features (frames -> motion)", [&](CLI::App& app) {
-    app.add_option("--config", config_file, "chain configuration YAML (uses sections scene and motion)");
-    app.add_option("--gsd", gsd_m, "ground sampling distance, m/px")->check(CLI::PositiveNumber);
-    app.add_option("--fps", fps, "frame rate")->check(CLI::PositiveNumber);
+    config::add_node_config_options(app, config_args, "scene and motion");
     app.add_option("--streams", streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
     app.add_option("--features", features,
                    "features to publish: all, or only the moving ones (all that segmentation and tracking use; "
@@ -42,67 +40,21 @@ int motion_main(int argc, char** argv) {
       dds::finalize(node, "motion");
       const bool moving_only = features == "moving";
       install_shutdown_handler();
-      auto options = config_file.empty() ? pipeline::ChainOptions{} : pipeline::load_chain_options(config_file);
-      if (gsd_m > 0) options.scene.gsd_m = gsd_m;
-      if (fps > 0) options.scene.fps = fps;
+      const auto config = config::load_node_config(config_args);
+      const auto options = config.layer("motion", motion::load_motion_options);
 
       dds::Participant participant(node.dds);
-      auto frames = participant.make_reader<msg::FramePubSubType>(dds::kFramesTopic, dds::TopicClass::Frames);
-      auto motion_out = participant.make_writer<msg::MotionEstimatePubSubType>(dds::kMotionTopic, dds::TopicClass::Chain);
-      if (node.dds.mode == dds::DeliveryMode::Lossless) motion_out->set_required_readers(node.wait_subscribers);
-      dds::HealthReporter health(participant, "motion", "*");
-      health.watch(*frames);
-      health.watch(*motion_out);
-      spdlog::info("{} -> {} ({}, waiting for {} reader(s))", dds::kFramesTopic, dds::kMotionTopic, node.mode,
-                   node.wait_subscribers);
       std::map<std::string, motion::MotionEstimator> estimators;
-      std::map<std::string, int64_t> last_index;
-      dds::StreamEnds ends(streams);
-      dds::RejectLog rejects;
-      msg::Frame sample;
-      while (!shutdown_requested() && !ends.all_ended()) {
-        health.set_queue_depth(static_cast<uint32_t>(frames->unread()));
-        health.tick();
-        if (!frames->wait_for_data(std::chrono::milliseconds(200))) continue;
-        while (frames->take(sample)) {
-          const std::string stream = sample.stream_id().to_string();
-          if (sample.end_of_stream()) {
-            msg::MotionEstimate eos;
-            eos.stream_id(stream);
-            eos.frame_index(sample.frame_index());
-            eos.end_of_stream(true);
-            motion_out->write_reliably(eos, dds::end_of_stream_patience(node.dds.mode));
-            ends.end(stream);
-            continue;
-          }
-          health.frame_in();
-          std::string why;
-          auto frame = dds::view_msg(sample, why);  // processed before the next take: no copy
-          if (!frame) {
-            health.invalid_sample();
-            rejects.log(dds::kFramesTopic, why);
-            continue;
-          }
-          if (auto it = last_index.find(stream); it != last_index.end() && frame->index > it->second + 1) {
-            health.dropped(static_cast<uint64_t>(frame->index - it->second - 1));
-          }
-          last_index[stream] = frame->index;
-          const auto t0 = std::chrono::steady_clock::now();
-          auto& estimator = estimators.try_emplace(stream, options.motion, options.scene).first->second;
-          auto out = dds::to_msg(estimator.process(*frame));
-          if (moving_only) {
-            auto& f = out.features();
-            f.erase(std::remove_if(f.begin(), f.end(), [](const msg::Feature& x) { return !x.moving(); }), f.end());
-          }
-          const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-          if (!dds::publish(*motion_out, out, node.dds.mode)) health.dropped();
-          health.frame_out(frame->index, ms, dds::latency_ms_since(frame->capture_time_ns));
-          health.set_bytes_out(motion_out->bytes_sent());
-        }
-      }
-      motion_out->flush(dds::end_of_stream_patience(node.dds.mode));
-      health.report(msg::ComponentState::FINISHED);
-      return kExitOk;
+      using Node = dds::SingleInputNode<msg::FramePubSubType, msg::MotionEstimatePubSubType, Frame>;
+      Node single(participant,
+                  {"motion", dds::kFramesTopic, dds::kMotionTopic, dds::TopicClass::Frames, streams, node.wait_subscribers},
+                  [&](const std::string& stream, const Frame& frame) {
+                    auto& estimator = estimators.try_emplace(stream, options, config.scene).first->second;
+                    auto out = dds::to_msg(estimator.process(frame));
+                    if (moving_only) keep_moving_features(out);
+                    return std::optional(std::move(out));
+                  });
+      return single.run();
     };
   });
 }

@@ -44,8 +44,8 @@ int process_main(int argc, char** argv) {
                  "the input is an MCAP recording: re-run tracking on its motion and segmentation (default for *.mcap)");
     app.add_option("--out", out_dir, "output folder")->required();
     app.add_option("--config", config_file, "chain configuration YAML (sections scene, motion, segmentation, tracking)");
-    app.add_option("--segmentation", method, "clustering, korn, morphological, lbp or fusion (default from config: fusion)")
-        ->check(CLI::IsMember({"clustering", "korn", "morphological", "lbp", "fusion"}));
+    app.add_option("--segmentation", method, segmentation_method_choices() + " (default from config: fusion)")
+        ->check(CLI::IsMember(segmentation_method_names()));
     app.add_option("--gsd", gsd_m, "ground sampling distance, m/px (default: seqinfo.ini gsd, else KLV metadata, else config, else 0.35)")
         ->check(CLI::PositiveNumber);
     app.add_option("--fps", fps, "frame rate (default: the input's; a CLIF folder's from its ../pos GPS times)")->check(CLI::PositiveNumber);

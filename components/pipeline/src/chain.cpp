@@ -8,15 +8,16 @@
 
 namespace uavmot::pipeline {
 
-ChainOptions load_chain_options(const std::string& file) { return load_chain_options(ConfigNode::load_file(file)); }
+ChainOptions load_chain_options(const std::string& file) { return load_chain_options(config::ChainConfig::load_file(file)); }
 
-ChainOptions load_chain_options(const ConfigNode& root) {
-  root.expect_only({"scene", "motion", "segmentation", "tracking"});
+ChainOptions load_chain_options(const ConfigNode& root) { return load_chain_options(config::ChainConfig(root)); }
+
+ChainOptions load_chain_options(const config::ChainConfig& config) {
   ChainOptions options;
-  if (root.has("scene")) options.scene = load_scene_info(root.child("scene"));
-  if (root.has("motion")) options.motion = motion::load_motion_options(root.child("motion"));
-  if (root.has("segmentation")) options.segmentation = segmentation::load_segmentation_options(root.child("segmentation"));
-  if (root.has("tracking")) options.tracking = tracking::load_tracker_options(root.child("tracking"));
+  options.scene = config.scene;
+  options.motion = config.layer("motion", motion::load_motion_options);
+  options.segmentation = config.layer("segmentation", segmentation::load_segmentation_options);
+  options.tracking = config.layer("tracking", tracking::load_tracker_options);
   return options;
 }
 

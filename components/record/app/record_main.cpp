@@ -18,7 +18,7 @@
 #include "uavmot/mcap/queued_writer.hpp"
 #include "uavmot/mcap/recover.hpp"
 #include "uavmot/foxglove/schemas.hpp"
-#include "uavmot/record/cdr_payload.hpp"
+#include "uavmot/dds/cdr_sample.hpp"
 #include "uavmot/record/foxglove_translation.hpp"
 #include "uavmot/record/qos_description.hpp"
 #include "uavmot/record/topic_catalog.hpp"
@@ -108,7 +108,7 @@ class TypedRecorder final : public TopicRecorder {
     eprosima::fastdds::dds::SampleInfo info;
     while (reader_->take(sample_, &info)) {
       const uint64_t received = wall_ns();
-      out_.write(channel_, ++sequence_, received, to_ns(info.source_timestamp), record::to_cdr(type_, sample_));
+      out_.write(channel_, ++sequence_, received, to_ns(info.source_timestamp), dds::to_cdr(type_, sample_));
       note_frame(sample_);
       if (foxglove_channel_) write_foxglove(received, to_ns(info.source_timestamp));
       ++n;

@@ -13,7 +13,7 @@
 #include "uavmot/dds/chain_convert.hpp"
 #include "uavmot/dds/topics.hpp"
 #include "uavmot/mcap/reader.hpp"
-#include "uavmot/record/cdr_payload.hpp"
+#include "uavmot/dds/cdr_sample.hpp"
 
 namespace uavmot::record {
 namespace {
@@ -25,7 +25,7 @@ class TopicDecoder {
   template <class Handler>
   bool decode(const mcap::MessageView& m, const std::string& what, RecordedSampleCounts& counts, uint64_t& handed,
               const Handler& handler) {
-    from_cdr(type_, m.data, m.size, sample_, what);
+    dds::from_cdr(type_, m.data, m.size, sample_, what);
     if (sample_.end_of_stream()) return false;  // carries no result
     std::string why;
     auto value = dds::from_msg(sample_, why);

@@ -1,7 +1,7 @@
 // CDR bytes as the recorder stores them: identical to what Fast DDS sends, and decoded back to
 // the same sample.
 
-#include "uavmot/record/cdr_payload.hpp"
+#include "uavmot/dds/cdr_sample.hpp"
 
 #include <mutex>
 #include <set>
@@ -16,6 +16,9 @@
 
 namespace uavmot::record {
 namespace {
+
+using dds::from_cdr;
+using dds::to_cdr;
 
 msg::MotionEstimate make_motion(int64_t index) {
   msg::MotionEstimate m;

@@ -15,7 +15,7 @@
 #include "uavmot/core/shutdown.hpp"
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/mcap/reader.hpp"
-#include "uavmot/record/cdr_payload.hpp"
+#include "uavmot/dds/cdr_sample.hpp"
 #include "uavmot/record/topic_catalog.hpp"
 #include "uavmot/record/typed_topic.hpp"
 #include "uavmot/replay/recording_info.hpp"
@@ -46,7 +46,7 @@ class TypedPublisher final : public TopicPublisher {
   }
 
   bool publish(const mcap::MessageView& m) override {
-    record::from_cdr(type_, m.data, m.size, sample_,
+    dds::from_cdr(type_, m.data, m.size, sample_,
                      fmt::format("{}: message {} of {} (chunk at byte offset {})", m.channel->topic, m.sequence,
                                  m.channel->topic, m.source_offset));
     const bool ok = lossless_ ? writer_->write_reliably(sample_) : writer_->write(sample_);

@@ -125,9 +125,7 @@ int main(int argc, char** argv) {
   }
   std::printf("| method | CPU median ms | CPU p95 ms | wall median ms | wall p95 ms | clusters | regions | objects matched (IoU >= 0.5) |\n"
               "|---|---|---|---|---|---|---|---|\n");
-  for (auto method : {uavmot::SegmentationMethod::Clustering, uavmot::SegmentationMethod::Korn,
-                      uavmot::SegmentationMethod::Morphological, uavmot::SegmentationMethod::Lbp,
-                      uavmot::SegmentationMethod::Fusion}) {
+  for (auto method : uavmot::kSegmentationMethods) {
     seg::SegmentationOptions options;
     options.method = method;
     seg::Segmenter segmenter(options, scene);

@@ -18,9 +18,7 @@ struct SimTablesRequest {
   std::string preset = "paper";
   uint64_t seed = 1;
   int frames = 0;  // 0 = the preset's length
-  std::vector<SegmentationMethod> methods = {SegmentationMethod::Clustering, SegmentationMethod::Korn,
-                                             SegmentationMethod::Morphological, SegmentationMethod::Lbp,
-                                             SegmentationMethod::Fusion};
+  std::vector<SegmentationMethod> methods{kSegmentationMethods.begin(), kSegmentationMethods.end()};
   SegmentationOptions base;  // `method` is replaced by each of `methods`
   // false: the chain's motion layer finds the moving features (what `uavmot process` does).
   // true: ideal features from the ground truth instead: Shi-Tomasi corners (min distance 3 px)

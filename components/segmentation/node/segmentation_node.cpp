@@ -5,10 +5,11 @@
 #include "framePubSubTypes.h"
 #include "motionPubSubTypes.h"
 #include "segmentationPubSubTypes.h"
+#include "uavmot/config/chain_config.hpp"
 #include "uavmot/core/app.hpp"
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/dds/paired_node.hpp"
-#include "uavmot/pipeline/chain.hpp"
+#include "uavmot/segmentation/segmentation_options.hpp"
 #include "uavmot/segmentation/segmenter.hpp"
 
 namespace uavmot {
@@ -16,24 +17,20 @@ namespace {
 
 int segmentation_main(int argc, char** argv) {
   dds::NodeOptions node;
-  std::string config_file, method;
-  double gsd_m = 0.0, fps = 0.0;
+  config::NodeConfigArgs config_args;
+  std::string method;
   int streams = 1;
   return run_app(argc, argv, "segmentation", "segment moving objects (frames + motion -> clusters and regions)", [&](CLI::App& app) {
-    app.add_option("--config", config_file, "chain configuration YAML (uses sections scene and segmentation)");
-    app.add_option("--segmentation", method, "clustering, korn, morphological, lbp or fusion")
-        ->check(CLI::IsMember({"clustering", "korn", "morphological", "lbp", "fusion"}));
-    app.add_option("--gsd", gsd_m, "ground sampling distance, m/px")->check(CLI::PositiveNumber);
-    app.add_option("--fps", fps, "frame rate")->check(CLI::PositiveNumber);
+    config::add_node_config_options(app, config_args, "scene and segmentation");
+    app.add_option("--segmentation", method, segmentation_method_choices())->check(CLI::IsMember(segmentation_method_names()));
     app.add_option("--streams", streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
     dds::add_node_options(app, node);
     return [&]() -> int {
       dds::finalize(node, "segmentation");
       install_shutdown_handler();
-      auto options = config_file.empty() ? pipeline::ChainOptions{} : pipeline::load_chain_options(config_file);
-      if (!method.empty()) options.segmentation.method = parse_segmentation_method(method);
-      if (gsd_m > 0) options.scene.gsd_m = gsd_m;
-      if (fps > 0) options.scene.fps = fps;
+      const auto config = config::load_node_config(config_args);
+      auto options = config.layer("segmentation", segmentation::load_segmentation_options);
+      if (!method.empty()) options.method = parse_segmentation_method(method);
       dds::Participant participant(node.dds);
       std::map<std::string, segmentation::Segmenter> segmenters;
       using Node = dds::PairedNode<msg::FramePubSubType, msg::MotionEstimatePubSubType, msg::SegmentationPubSubType, Frame, MotionEstimate>;
@@ -41,7 +38,7 @@ int segmentation_main(int argc, char** argv) {
                   {"segmentation", dds::kFramesTopic, dds::kMotionTopic, dds::kSegmentationTopic, dds::TopicClass::Frames,
                    dds::TopicClass::Chain, streams, node.wait_subscribers},
                   [&](const std::string& stream, int64_t, const Frame& frame, const MotionEstimate& motion) {
-                    auto& segmenter = segmenters.try_emplace(stream, options.segmentation, options.scene).first->second;
+                    auto& segmenter = segmenters.try_emplace(stream, options, config.scene).first->second;
                     return std::optional(dds::to_msg(segmenter.process(frame, motion)));
                   });
       return paired.run();

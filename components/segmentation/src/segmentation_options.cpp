@@ -85,7 +85,7 @@ SegmentationOptions load_segmentation_options(const ConfigNode& node) {
                     "max_length_factor", "min_width_factor", "max_width_factor", "min_supporting_features",
                     "support_margin_px", "fallback_to_cluster_box", "duplicate_overlap"});
   std::string method = to_string(o.method);
-  node.read_choice("method", method, {"clustering", "korn", "morphological", "lbp", "fusion"});
+  node.read_choice("method", method, segmentation_method_names());
   o.method = parse_segmentation_method(method);
 
   auto& c = o.clustering;

@@ -8,7 +8,7 @@
 
 #include "uavmot/core/error.hpp"
 #include "uavmot/segmentation/blob_regions.hpp"
-#include "uavmot/segmentation/gradients.hpp"
+#include "method_gradients.hpp"
 
 namespace uavmot::segmentation {
 namespace {
@@ -42,6 +42,12 @@ Region cluster_region(const FeatureCluster& cluster) {
   region.score = 1.0;
   region.cluster_id = static_cast<int32_t>(cluster.id);
   return region;
+}
+
+size_t fused_methods() {
+  size_t n = 0;
+  for (SegmentationMethod method : kSegmentationMethods) n += method_gradient(method).fused ? 1 : 0;
+  return n;
 }
 
 // Fraction of `candidate`'s area covered by `kept`.
@@ -93,14 +99,13 @@ SegmentationInput make_segmentation_input(const Frame& frame, const std::vector<
 Segmenter::Segmenter(SegmentationOptions options, SceneInfo scene) : options_(std::move(options)), scene_(scene) {
   validate(options_);
   validate_scene(scene_);
-  const auto& g = options_.gradients;
-  const double contrast = options_.regions.min_edge_contrast;
-  korn_reference_ = step_response(contrast, [&](const cv::Mat& m) { return korn_gradient(m, g.korn_sigmas_px); });
-  morphological_reference_ =
-      step_response(contrast, [&](const cv::Mat& m) { return morphological_gradient(m, g.morphological_sizes_px); });
-  lbp_reference_ = step_response(contrast, [&](const cv::Mat& m) {
-    return lbp_gradient(m, g.lbp_neighbours, g.lbp_radii_px, g.lbp_min_stddev);
-  });
+  references_.fill(1.0);
+  for (SegmentationMethod method : kSegmentationMethods) {
+    if (const Gradient gradient = method_gradient(method).gradient) {
+      references_[static_cast<size_t>(method)] = step_response(
+          options_.regions.min_edge_contrast, [&](const cv::Mat& m) { return gradient(m, options_.gradients); });
+    }
+  }
 }
 
 std::vector<FeatureCluster> Segmenter::cluster(const MotionEstimate& motion, cv::Size image_size,
@@ -129,25 +134,18 @@ std::vector<cv::Rect> Segmenter::required_crops(const MotionEstimate& motion, cv
   return rois;
 }
 
+cv::Mat Segmenter::normalised_accumulator(SegmentationMethod method, const cv::Mat& gray) const {
+  return normalise_accumulator(method_gradient(method).gradient(gray, options_.gradients),
+                               references_[static_cast<size_t>(method)]);
+}
+
 cv::Mat Segmenter::accumulator(const cv::Mat& gray) const {
-  const auto& g = options_.gradients;
-  switch (options_.method) {
-    case SegmentationMethod::Korn:
-      return normalise_accumulator(korn_gradient(gray, g.korn_sigmas_px), korn_reference_);
-    case SegmentationMethod::Morphological:
-      return normalise_accumulator(morphological_gradient(gray, g.morphological_sizes_px), morphological_reference_);
-    case SegmentationMethod::Lbp:
-      return normalise_accumulator(lbp_gradient(gray, g.lbp_neighbours, g.lbp_radii_px, g.lbp_min_stddev),
-                                   lbp_reference_);
-    case SegmentationMethod::Fusion:
-    case SegmentationMethod::Clustering:
-      break;
+  if (method_gradient(options_.method).gradient) return normalised_accumulator(options_.method, gray);
+  std::vector<cv::Mat> fused;  // fusion: the fused methods' accumulators, in list order
+  for (SegmentationMethod method : kSegmentationMethods) {
+    if (method_gradient(method).fused) fused.push_back(normalised_accumulator(method, gray));
   }
-  return fuse_accumulators(
-      {normalise_accumulator(korn_gradient(gray, g.korn_sigmas_px), korn_reference_),
-       normalise_accumulator(morphological_gradient(gray, g.morphological_sizes_px), morphological_reference_),
-       normalise_accumulator(lbp_gradient(gray, g.lbp_neighbours, g.lbp_radii_px, g.lbp_min_stddev), lbp_reference_)},
-      options_.regions.fusion_rule);
+  return fuse_accumulators(fused, options_.regions.fusion_rule);
 }
 
 std::vector<Region> Segmenter::segment_window(const cv::Mat& gray, const cv::Rect& window,
@@ -156,9 +154,9 @@ std::vector<Region> Segmenter::segment_window(const cv::Mat& gray, const cv::Rec
   const auto& r = options_.regions;
   const cv::Mat acc = accumulator(gray);
   const bool summed = options_.method == SegmentationMethod::Fusion && r.fusion_rule == FusionRule::Sum;
-  const double full_scale = summed ? 3.0 * 255.0 : 255.0;
+  const double full_scale = summed ? static_cast<double>(fused_methods()) * 255.0 : 255.0;
   const double threshold = adaptive_threshold(acc, r.threshold_quantile, r.threshold_min_fraction * full_scale);
-  const int connectivity = r.connectivity != 0 ? r.connectivity : options_.method == SegmentationMethod::Lbp ? 8 : 4;
+  const int connectivity = r.connectivity != 0 ? r.connectivity : method_gradient(options_.method).connectivity;
 
   const double vehicle_length = scene_.metres_to_px(scene_.vehicle_length_m);
   const double vehicle_width = scene_.metres_to_px(scene_.vehicle_width_m);

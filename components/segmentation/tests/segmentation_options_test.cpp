@@ -26,6 +26,13 @@ TEST(SegmentationOptions, DefaultsAreValidAndFusion) {
   EXPECT_NO_THROW(validate(o));
 }
 
+TEST(SegmentationOptions, AcceptsEveryListedMethodByName) {
+  for (SegmentationMethod method : kSegmentationMethods) {
+    EXPECT_EQ(load(std::string("method: ") + to_string(method) + "\n").method, method);
+  }
+  expect_error_mentions("method: sobol\n", "fusion");
+}
+
 TEST(SegmentationOptions, ReadsEveryKindOfField) {
   const SegmentationOptions o = load(
       "method: lbp\nlink_distance_m: 4.5\nkorn_sigmas_px: [1.0, 2.0]\nmorphological_sizes_px: [3, 7]\n"

@@ -5,11 +5,11 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-
-#include <fastdds/rtps/common/SerializedPayload.h>
+#include <vector>
 
 #include "tracker_statePubSubTypes.h"
 #include "uavmot/core/error.hpp"
+#include "uavmot/dds/cdr_sample.hpp"
 
 namespace uavmot::tracking {
 namespace {
@@ -105,15 +105,18 @@ std::optional<TrackerState> from_msg(const msg::TrackerSnapshot& m, std::string&
 }
 
 bool save_snapshot(const msg::TrackerSnapshot& snapshot, const std::string& path) {
-  msg::TrackerSnapshotPubSubType type;
-  auto copy = snapshot;
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(type.getSerializedSizeProvider(&copy)());
-  if (!type.serialize(&copy, &payload)) return false;
+  auto copy = snapshot;  // the generated serializer takes a mutable sample
+  std::vector<uint8_t> bytes;
+  try {
+    bytes = dds::to_cdr<msg::TrackerSnapshotPubSubType>(copy);
+  } catch (const InputError&) {
+    return false;
+  }
   const std::string tmp = path + ".tmp";
   {
     std::ofstream out(tmp, std::ios::binary | std::ios::trunc);
     if (!out) return false;
-    out.write(reinterpret_cast<const char*>(payload.data), payload.length);
+    out.write(reinterpret_cast<const char*>(bytes.data()), static_cast<std::streamsize>(bytes.size()));
     if (!out) return false;
   }
   return std::rename(tmp.c_str(), path.c_str()) == 0;
@@ -122,19 +125,10 @@ bool save_snapshot(const msg::TrackerSnapshot& snapshot, const std::string& path
 std::optional<msg::TrackerSnapshot> load_snapshot(const std::string& path) {
   if (!std::filesystem::exists(path)) return std::nullopt;
   std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  eprosima::fastrtps::rtps::SerializedPayload_t payload(static_cast<uint32_t>(bytes.size()));
-  std::copy(bytes.begin(), bytes.end(), payload.data);
-  payload.length = static_cast<uint32_t>(bytes.size());
+  const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   msg::TrackerSnapshotPubSubType type;
   msg::TrackerSnapshot snapshot;
-  bool ok = false;
-  try {
-    ok = !bytes.empty() && type.deserialize(&payload, &snapshot);
-  } catch (const std::exception&) {
-    ok = false;
-  }
-  if (!ok) throw InputError("tracker state file '" + path + "' is corrupt");
+  dds::from_cdr(type, bytes.data(), bytes.size(), snapshot, "tracker state file '" + path + "' is corrupt");
   return snapshot;
 }
 

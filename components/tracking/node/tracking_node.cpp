@@ -12,11 +12,12 @@
 #include "tracker_statePubSubTypes.h"
 #include "tracker_state_io.hpp"
 #include "tracksPubSubTypes.h"
+#include "uavmot/config/chain_config.hpp"
 #include "uavmot/core/app.hpp"
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/dds/paired_node.hpp"
-#include "uavmot/pipeline/chain.hpp"
 #include "uavmot/tracking/tracker.hpp"
+#include "uavmot/tracking/tracker_options.hpp"
 
 namespace uavmot {
 namespace {
@@ -28,22 +29,19 @@ struct StreamTracker {
 
 int tracking_main(int argc, char** argv) {
   dds::NodeOptions node;
-  std::string config_file, state_dir;
-  double gsd_m = 0.0, fps = 0.0;
+  config::NodeConfigArgs config_args;
+  std::string state_dir;
   int streams = 1;
   return run_app(argc, argv, "tracking", "track moving objects (motion + segmentation -> tracks)", [&](CLI::App& app) {
-    app.add_option("--config", config_file, "chain configuration YAML (uses sections scene and tracking)");
-    app.add_option("--gsd", gsd_m, "ground sampling distance, m/px")->check(CLI::PositiveNumber);
-    app.add_option("--fps", fps, "frame rate")->check(CLI::PositiveNumber);
+    config::add_node_config_options(app, config_args, "scene and tracking");
     app.add_option("--streams", streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
     app.add_option("--state-dir", state_dir, "save the tracker state here after every frame and restore it on start");
     dds::add_node_options(app, node);
     return [&]() -> int {
       dds::finalize(node, "tracking");
       install_shutdown_handler();
-      auto options = config_file.empty() ? pipeline::ChainOptions{} : pipeline::load_chain_options(config_file);
-      if (gsd_m > 0) options.scene.gsd_m = gsd_m;
-      if (fps > 0) options.scene.fps = fps;
+      const auto config = config::load_node_config(config_args);
+      const auto options = config.layer("tracking", tracking::load_tracker_options);
       if (!state_dir.empty()) std::filesystem::create_directories(state_dir);
       dds::Participant participant(node.dds);
       auto state_out = participant.make_writer<msg::TrackerSnapshotPubSubType>(dds::kTrackerStateTopic, dds::TopicClass::State);
@@ -51,7 +49,7 @@ int tracking_main(int argc, char** argv) {
       auto state_file = [&](const std::string& stream) { return state_dir + "/tracker_state_" + stream + ".cdr"; };
 
       auto tracker_for = [&](const std::string& stream) -> StreamTracker& {
-        auto [it, fresh] = trackers.try_emplace(stream, StreamTracker{tracking::Tracker(options.tracking, options.scene), 0});
+        auto [it, fresh] = trackers.try_emplace(stream, StreamTracker{tracking::Tracker(options, config.scene), 0});
         if (fresh && !state_dir.empty()) {
           if (auto snapshot = tracking::load_snapshot(state_file(stream))) {
             std::string why;

@@ -14,6 +14,7 @@
 
 #include "uavmot/core/homography.hpp"
 #include "uavmot/core/oriented_box.hpp"
+#include "uavmot/core/segmentation_method.hpp"
 
 namespace uavmot {
 
@@ -52,8 +53,6 @@ struct MotionEstimate {
   HomographyQuality quality;
   std::vector<TrackedFeature> features;
 };
-
-enum class SegmentationMethod : uint8_t { Clustering = 0, Korn = 1, Morphological = 2, Lbp = 3, Fusion = 4 };
 
 struct FeatureCluster {
   uint32_t id = 0;
@@ -109,9 +108,6 @@ struct TrackList {
 void round_to_float32(Track& track);
 bool is_float32_exact(const Track& track);
 
-const char* to_string(SegmentationMethod method);
 const char* to_string(TrackState state);
-// Throws uavmot::InvalidArgument naming the accepted values.
-SegmentationMethod parse_segmentation_method(const std::string& name);
 
 }  // namespace uavmot

@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "uavmot/config/chain_config.hpp"
 #include "uavmot/core/chain_types.hpp"
 #include "uavmot/core/scene_info.hpp"
 #include "uavmot/core/yaml_config.hpp"
@@ -22,10 +23,11 @@ struct ChainOptions {
   tracking::TrackerOptions tracking;
 };
 
-// Reads a chain configuration (sections scene, motion, segmentation, tracking; all optional).
-// Throws InputError naming the file, line and key of anything invalid.
+// Reads a chain configuration (sections scene, motion, segmentation, tracking; all optional), every
+// section of it. Throws InputError naming the file, line and key of anything invalid.
 ChainOptions load_chain_options(const std::string& file);
 ChainOptions load_chain_options(const ConfigNode& root);
+ChainOptions load_chain_options(const config::ChainConfig& config);
 
 struct ChainOutput {
   MotionEstimate motion;

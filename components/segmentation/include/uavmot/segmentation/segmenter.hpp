@@ -13,6 +13,7 @@
 //   SegmentationInput input = make_segmentation_input(frame, rois);  // ship input.crops
 //   SegmentationResult r = segmenter.process(input, motion);
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -80,6 +81,7 @@ class Segmenter {
   std::vector<FeatureCluster> cluster(const MotionEstimate& motion, cv::Size image_size, ClusteringStats* stats) const;
   cv::Rect window_of(const FeatureCluster& cluster, cv::Size image_size) const;
   cv::Mat accumulator(const cv::Mat& gray) const;
+  cv::Mat normalised_accumulator(SegmentationMethod method, const cv::Mat& gray) const;
   // A box (method=clustering) around the cluster's features that no region explains, when there
   // are enough of them to be an object the gradients missed.
   std::optional<Region> uncovered_features_region(const FeatureCluster& cluster,
@@ -90,10 +92,8 @@ class Segmenter {
 
   SegmentationOptions options_;
   SceneInfo scene_;
-  // Accumulator response to a step of regions.min_edge_contrast grey levels, per gradient.
-  double korn_reference_ = 1.0;
-  double morphological_reference_ = 1.0;
-  double lbp_reference_ = 1.0;
+  // Accumulator response to a step of regions.min_edge_contrast grey levels, per gradient method.
+  std::array<double, kSegmentationMethods.size()> references_;
   SegmentationStats stats_;
 };
 

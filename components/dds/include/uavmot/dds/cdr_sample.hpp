@@ -1,11 +1,14 @@
 #pragma once
-// A typed sample to and from its serialized CDR form, the encapsulation header included: the
-// bytes a Fast DDS 2.9 DataReader receives for uavmot's (XCDR1, final) types, and what an MCAP
-// "cdr" message holds. to_cdr() encodes with mcap::encode_cdr (zero padding to 4 bytes as on
-// the wire): the recorded bytes equal the received ones (tested).
+// The one CDR helper for uavmot's generated types: a typed sample to and from its serialized CDR
+// form, the encapsulation header included: the bytes a Fast DDS 2.9 DataReader receives for
+// uavmot's (XCDR1, final) types, what an MCAP "cdr" message holds (record, replay) and what the
+// tracking node's state file holds. to_cdr() encodes with mcap::encode_cdr (zero padding to 4
+// bytes as on the wire), the encoder the Foxglove schema messages use too: the recorded bytes
+// equal the received ones (record_tests).
 
 #include <cstdint>
 #include <cstring>
+#include <string>
 #include <vector>
 
 #include <fastdds/rtps/common/SerializedPayload.h>
@@ -13,7 +16,7 @@
 #include "uavmot/core/error.hpp"
 #include "uavmot/mcap/cdr.hpp"
 
-namespace uavmot::record {
+namespace uavmot::dds {
 
 template <class PubSubType>
 std::vector<uint8_t> to_cdr(PubSubType& type, typename PubSubType::type& sample) {
@@ -21,6 +24,12 @@ std::vector<uint8_t> to_cdr(PubSubType& type, typename PubSubType::type& sample)
   const uint32_t bound = type.getSerializedSizeProvider(&sample)();
   return mcap::encode_cdr(bound, std::string(type.getName()) + " sample",
                           [&](eprosima::fastcdr::Cdr& cdr) { sample.serialize(cdr); });
+}
+
+template <class PubSubType>
+std::vector<uint8_t> to_cdr(typename PubSubType::type& sample) {
+  PubSubType type;
+  return to_cdr(type, sample);
 }
 
 // Throws InputError (naming `what`) when the bytes are not a valid CDR sample of the type.
@@ -40,4 +49,4 @@ void from_cdr(PubSubType& type, const uint8_t* data, size_t size, typename PubSu
   if (!ok) throw InputError(what + ": not a valid " + std::string(type.getName()) + " CDR sample");
 }
 
-}  // namespace uavmot::record
+}  // namespace uavmot::dds
