@@ -8,12 +8,18 @@
 #include "uavmot/core/chain_types.hpp"
 #include "motion_model.hpp"
 #include "uavmot/core/error.hpp"
+#include "uavmot/core/segmentation_method.hpp"
 
 namespace uavmot::tracking {
 namespace {
 
+// "auto", "all", then every segmentation method (core/segmentation_method.hpp keeps the list).
 const std::vector<std::string>& region_method_choices() {
-  static const std::vector<std::string> choices = {"auto", "all", "clustering", "korn", "morphological", "lbp", "fusion"};
+  static const std::vector<std::string> choices = [] {
+    std::vector<std::string> names = {"auto", "all"};
+    for (const std::string& name : segmentation_method_names()) names.push_back(name);
+    return names;
+  }();
   return choices;
 }
 
