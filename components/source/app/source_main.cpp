@@ -29,11 +29,17 @@ int source_main(int argc, char** argv) {
   double rate_hz = 0.0;
   bool native_rate = false;
   double wait_timeout_s = 30.0;
+  int64_t first_index = 1;  // frame index on the wire of the first frame published
 
   return run_app(argc, argv, "source", "publish frames of a video, image folder or MOTChallenge sequence", [&](CLI::App& app) {
     app.add_option("input", input.path, "video file, image folder or MOTChallenge sequence folder")->required();
     app.add_option("--stream-id", input.stream_id, "key of this stream (one per UAV)")->capture_default_str();
     app.add_option("--start", input.start_frame, "first input frame (1-based)")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--first-index", first_index,
+                   "number the published frames from this index (a run that continues an earlier one, e.g. with --start: "
+                   "a restored tracker skips the frames its state already holds)")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
     app.add_option("--count", input.max_frames, "number of frames (0 = all)")->check(CLI::NonNegativeNumber)->capture_default_str();
     app.add_flag("--loop", input.loop, "start again after the last frame");
     app.add_option("--color", color, "gray or color")->check(CLI::IsMember({"gray", "color"}))->capture_default_str();
@@ -88,6 +94,8 @@ int source_main(int argc, char** argv) {
       }
 
       Frame frame;
+      // Pacing and capture times count from the first frame published; only the index on the wire moves.
+      const int64_t index_offset = first_index - 1;
       int64_t published = 0, dropped_late = 0, reported_undecoded = 0;
       // Capture times go on the wire on the wall clock (stream start + (index - 1) / rate), so every
       // component can tell its latency; the results never depend on them.
@@ -122,6 +130,7 @@ int source_main(int argc, char** argv) {
           const auto t0 = std::chrono::steady_clock::now();
           frame.capture_time_ns += stream_start_ns;
           auto sample = dds::to_msg(frame);
+          sample.frame_index(frame.index + index_offset);
           const bool ok = lossless ? writer->write_reliably(sample) : writer->write(sample);
           if (handshake && published == 0) {
             const auto sent = Clock::now();
@@ -143,7 +152,7 @@ int source_main(int argc, char** argv) {
           ++published;
           health.frame_in();
           // Paced, the capture time is when the frame was due: latency shows how far the source lags behind.
-          health.frame_out(frame.index, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(),
+          health.frame_out(frame.index + index_offset, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(),
                            paced ? dds::latency_ms_since(frame.capture_time_ns) : 0.0);
           health.set_bytes_out(writer->bytes_sent());
           health.tick();
@@ -156,7 +165,7 @@ int source_main(int argc, char** argv) {
         exit_code = kExitBadInput;
       }
       const int64_t skipped_late = dropped_late + ahead.skipped_undecoded();
-      auto eos = dds::end_of_stream_frame(input.stream_id, std::max(frame.index, ahead.last_index()));
+      auto eos = dds::end_of_stream_frame(input.stream_id, std::max(frame.index, ahead.last_index()) + index_offset);
       writer->write_reliably(eos, dds::end_of_stream_patience(node.dds.mode));
       writer->flush(dds::end_of_stream_patience(node.dds.mode));
       health.report(exit_code == kExitOk ? msg::ComponentState::FINISHED : msg::ComponentState::FAILED);
