@@ -47,7 +47,7 @@ double parse_seconds(const std::string& value, const std::string& where) {
     used = 0;
   }
   if (value.empty() || used != value.size() || !(seconds >= 0.0 && seconds <= 3600.0)) {
-    throw InputError(where + " is '" + value + "' (expected seconds, 0 to 3600; 0 = off)");
+    throw InputError(where + " is '" + value + "' (expected seconds, 0 to 3600)");
   }
   return seconds;
 }
@@ -89,7 +89,7 @@ Profile load_profile(const std::string& file) {
     node.read("required", spec.required);
     node.read("stop_on_failure", spec.stop_on_failure);
     node.read("respawn", spec.respawn);
-    node.read("respawn_delay", spec.respawn_delay_s, 0.0, 3600.0);
+    node.read("respawn_delay", spec.respawn_delay);
     node.read("max_respawns", spec.max_respawns, 0, 1000000);
     node.read("start_delay", spec.start_delay_s, 0.0, 3600.0);
     node.read("hang_timeout", spec.hang_timeout);
@@ -139,6 +139,8 @@ Profile resolve(const Profile& profile, const std::map<std::string, std::string>
     p.enabled = "true";
     p.hang_timeout = substitute(p.hang_timeout, all, where);
     p.hang_timeout_s = parse_seconds(p.hang_timeout, where + ": hang_timeout");
+    p.respawn_delay = substitute(p.respawn_delay, all, where);
+    p.respawn_delay_s = parse_seconds(p.respawn_delay, where + ": respawn_delay");
   }
   return out;
 }

@@ -83,7 +83,9 @@ int motion_main(int argc, char** argv) {
             rejects.log(dds::kFramesTopic, why);
             continue;
           }
-          if (auto it = last_index.find(stream); it != last_index.end() && frame->index > it->second + 1) {
+          if (auto it = last_index.find(stream); it != last_index.end() && frame->index <= it->second) {
+            continue;  // a respawned source sends its last frame again (it cannot know it arrived): seen already
+          } else if (it != last_index.end() && frame->index > it->second + 1) {
             health.dropped(static_cast<uint64_t>(frame->index - it->second - 1));
           }
           last_index[stream] = frame->index;

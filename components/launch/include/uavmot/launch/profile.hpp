@@ -23,6 +23,7 @@ struct ProcessSpec {
   bool stop_on_failure = false;  // its failure (after respawns) ends the launch with a non-zero exit
   bool respawn = false;        // restart after a failure (non-zero exit or signal)
   std::vector<std::string> respawn_args;  // appended to args when respawned (e.g. the sink's --resume)
+  std::string respawn_delay = "1.0";  // seconds; a string until resolve() ("${var}" allowed), then respawn_delay_s
   double respawn_delay_s = 1.0;
   int max_respawns = 3;
   double start_delay_s = 0.2;  // pause after starting it, before the next one
