@@ -74,6 +74,11 @@ int launch_main(int argc, char** argv) {
           std::cout << p.name << ": uavmot " << p.command;
           for (const auto& a : p.args) std::cout << " " << a;
           if (p.common_args) for (const auto& a : resolved.common_args) std::cout << " " << a;
+          if (p.respawn && !p.respawn_args.empty()) {
+            std::cout << "  (respawned with";
+            for (const auto& a : p.respawn_args) std::cout << " " << a;
+            std::cout << ")";
+          }
           std::cout << "\n";
         }
         return kExitOk;
