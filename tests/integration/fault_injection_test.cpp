@@ -29,11 +29,10 @@ using testing::ChildProcess;
 
 enum class Outcome { Identical, Recovered, LaunchFails };
 // Live mode: results flow again within this long after a SIGKILL. Issue 20 asks for 2 s; on this
-// 2-core host at load 10, with respawn_delay 0.2, two runs measured: tracking 1.45 / 2.09 s, sink
-// 1.47 / 1.49, segmentation 0.76 / 0.80, motion 2.55 / 2.11, source 2.07 (the other run looped its
-// input, which a respawned source does not continue). Starting a process (participant, heap
-// reserve, discovery) takes most of it. The bound catches a component that does not come back,
-// not the 2 s target.
+// 2-core host (load about 10), with respawn_delay 0.2: tracking 1.01 s, sink 1.62, segmentation
+// 1.75, motion 2.09, source 1.61 (tracks of a frame published after the restart). Starting a
+// process (participant, heap reserve, discovery) takes most of it. The bound catches a component
+// that does not come back, not the 2 s target.
 constexpr double kLiveRecoveryBound_s = 6.0;
 constexpr const char* kLiveRespawnDelay = "0.2";
 
@@ -195,9 +194,11 @@ TEST_P(LiveFaultInjection, ResultsFlowAgainAfterARespawn) {
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   ASSERT_GT(victim, 0) << launch.log();
-  // The respawn, then the first tracks of a frame after it.
+  const int frame_at_kill = testing::last_frame_written(out + "/tracks_obb.csv");
+  // The respawn, then the first tracks of a frame published after it: the source publishes one
+  // frame every 40 ms from the kill on (a respawned source continues from its last frame).
   double respawned_s = -1, recovered_s = -1;
-  int frame_at_respawn = 0;
+  int frame_at_respawn = 0, first_new_frame = 0;
   deadline = Clock::now() + std::chrono::seconds(30);
   while (recovered_s < 0 && Clock::now() < deadline && !launch.wait(std::chrono::milliseconds(0))) {
     const int pid = testing::launched_pid(launch.log(), f.component);
@@ -205,13 +206,14 @@ TEST_P(LiveFaultInjection, ResultsFlowAgainAfterARespawn) {
     if (respawned_s < 0 && pid > 0 && pid != victim) {
       respawned_s = std::chrono::duration<double>(Clock::now() - killed).count();
       frame_at_respawn = frame;
-    } else if (respawned_s >= 0 && frame > frame_at_respawn) {
+      first_new_frame = std::string(f.component) == "source" ? frame + 1 : frame_at_kill + 1 + static_cast<int>(respawned_s * 25);
+    } else if (respawned_s >= 0 && frame >= first_new_frame) {
       recovered_s = std::chrono::duration<double>(Clock::now() - killed).count();
     }
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
-  std::printf("live %s SIGKILL: restarted after %.2f s, tracks again after %.2f s (frame %d at the restart)\n",
-              f.component, respawned_s, recovered_s, frame_at_respawn);
+  std::printf("live %s SIGKILL at frame %d: restarted after %.2f s (frame %d), tracks of frame >= %d after %.2f s\n",
+              f.component, frame_at_kill, respawned_s, frame_at_respawn, first_new_frame, recovered_s);
   EXPECT_GT(respawned_s, 0) << launch.log();
   EXPECT_GT(recovered_s, 0) << "no tracks after the restart\n" << launch.log();
   EXPECT_LT(recovered_s, kLiveRecoveryBound_s) << launch.log();
