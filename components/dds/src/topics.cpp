@@ -8,6 +8,9 @@ std::string profile(TopicClass topic_class, DeliveryMode mode, const char* side)
   switch (topic_class) {
     case TopicClass::Frames: return std::string("frames_") + to_string(mode) + "_" + side;
     case TopicClass::Chain: return std::string("chain_") + to_string(mode) + "_" + side;
+    case TopicClass::FramesResume:
+      if (mode == DeliveryMode::Lossless && std::string(side) == "reader") return "frames_lossless_resume_reader";
+      return std::string("frames_") + to_string(mode) + "_" + side;
     case TopicClass::ChainResume:
       if (mode == DeliveryMode::Lossless && std::string(side) == "reader") return "chain_lossless_resume_reader";
       return std::string("chain_") + to_string(mode) + "_" + side;

@@ -2,6 +2,7 @@
 //   uavmot launch bringup/local.yaml --input SEQ --out DIR [--set name=value ...]
 
 #include <filesystem>
+#include <memory>
 #include <sstream>
 #include <iostream>
 
@@ -13,6 +14,7 @@
 #include "uavmot/core/error.hpp"
 #include "uavmot/core/logging.hpp"
 #include "uavmot/core/shutdown.hpp"
+#include "uavmot/launch/dds_health_monitor.hpp"
 #include "uavmot/launch/profile.hpp"
 #include "uavmot/launch/supervisor.hpp"
 #include "uavmot/source/frame_source.hpp"
@@ -72,10 +74,25 @@ int launch_main(int argc, char** argv) {
           std::cout << p.name << ": uavmot " << p.command;
           for (const auto& a : p.args) std::cout << " " << a;
           if (p.common_args) for (const auto& a : resolved.common_args) std::cout << " " << a;
+          if (p.respawn && !p.respawn_args.empty()) {
+            std::cout << "  (respawned with";
+            for (const auto& a : p.respawn_args) std::cout << " " << a;
+            std::cout << ")";
+          }
           std::cout << "\n";
         }
         return kExitOk;
       }
+      // The watchdog reads uavmot/health where the processes with a hang_timeout report.
+      std::vector<std::vector<std::string>> watched;
+      for (const auto& p : resolved.processes) {
+        if (p.hang_timeout_s <= 0) continue;
+        watched.push_back(p.args);
+        if (p.common_args) watched.back().insert(watched.back().end(), resolved.common_args.begin(), resolved.common_args.end());
+      }
+      std::unique_ptr<launch::DdsHealthMonitor> health;
+      if (!watched.empty()) health = std::make_unique<launch::DdsHealthMonitor>(watched);
+      supervisor.set_health_monitor(health.get());
       std::error_code ec;
       fs::remove_all(run_dir, ec);
       const int code = supervisor.run();

@@ -38,6 +38,20 @@ bool parse_enabled(const std::string& value, const std::string& where) {
   throw InputError(where + ": enabled is '" + value + "' (expected true or false)");
 }
 
+double parse_seconds(const std::string& value, const std::string& where) {
+  size_t used = 0;
+  double seconds = -1.0;
+  try {
+    seconds = std::stod(value, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (value.empty() || used != value.size() || !(seconds >= 0.0 && seconds <= 3600.0)) {
+    throw InputError(where + " is '" + value + "' (expected seconds, 0 to 3600)");
+  }
+  return seconds;
+}
+
 }  // namespace
 
 Profile load_profile(const std::string& file) {
@@ -59,7 +73,7 @@ Profile load_profile(const std::string& file) {
   if (processes.empty()) root.fail("processes", "a profile needs a list of processes");
   for (const auto& node : processes) {
     node.expect_only({"name", "command", "args", "env", "common_args", "required", "stop_on_failure", "respawn", "respawn_delay",
-                      "max_respawns", "start_delay", "enabled", "reads"});
+                      "max_respawns", "start_delay", "enabled", "reads", "hang_timeout", "respawn_args"});
     ProcessSpec spec;
     node.read("name", spec.name);
     node.read("command", spec.command);
@@ -75,9 +89,11 @@ Profile load_profile(const std::string& file) {
     node.read("required", spec.required);
     node.read("stop_on_failure", spec.stop_on_failure);
     node.read("respawn", spec.respawn);
-    node.read("respawn_delay", spec.respawn_delay_s, 0.0, 3600.0);
+    node.read("respawn_delay", spec.respawn_delay);
     node.read("max_respawns", spec.max_respawns, 0, 1000000);
     node.read("start_delay", spec.start_delay_s, 0.0, 3600.0);
+    node.read("hang_timeout", spec.hang_timeout);
+    node.read("respawn_args", spec.respawn_args);
     if (node.has("env")) {
       const ConfigNode env = node.child("env");
       for (const auto& key : env.keys()) env.read(key, spec.env[key]);
@@ -118,8 +134,13 @@ Profile resolve(const Profile& profile, const std::map<std::string, std::string>
     const std::string where = profile.file + ": process '" + p.name + "'";
     p.command = substitute(p.command, all, where);
     for (auto& arg : p.args) arg = substitute(arg, all, where);
+    for (auto& arg : p.respawn_args) arg = substitute(arg, all, where);
     for (auto& [k, v] : p.env) v = substitute(v, all, where);
     p.enabled = "true";
+    p.hang_timeout = substitute(p.hang_timeout, all, where);
+    p.hang_timeout_s = parse_seconds(p.hang_timeout, where + ": hang_timeout");
+    p.respawn_delay = substitute(p.respawn_delay, all, where);
+    p.respawn_delay_s = parse_seconds(p.respawn_delay, where + ": respawn_delay");
   }
   return out;
 }

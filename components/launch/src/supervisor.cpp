@@ -34,6 +34,7 @@ struct Child {
   int respawns = 0;
   std::optional<Clock::time_point> respawn_at;
   bool finished = false;
+  bool hung = false;  // the watchdog killed it
 };
 
 std::string describe_status(int status) {
@@ -44,7 +45,7 @@ std::string describe_status(int status) {
 
 class Runner {
  public:
-  Runner(const Profile& profile, const std::vector<std::string>& programs) {
+  Runner(const Profile& profile, const std::vector<std::string>& programs, HealthMonitor* health) : health_(health) {
     for (size_t i = 0; i < profile.processes.size(); ++i) {
       Child c;
       c.spec = &profile.processes[i];
@@ -92,6 +93,9 @@ class Runner {
       for (const auto& [k, v] : c.spec->env) ::setenv(k.c_str(), v.c_str(), 1);
       std::vector<char*> args;
       for (auto& a : c.argv) args.push_back(const_cast<char*>(a.c_str()));
+      if (c.respawns > 0) {
+        for (auto& a : c.spec->respawn_args) args.push_back(const_cast<char*>(a.c_str()));
+      }
       args.push_back(nullptr);
       ::execv(c.program.c_str(), args.data());
       std::fprintf(stderr, "cannot run %s: %s\n", c.program.c_str(), std::strerror(errno));
@@ -102,8 +106,12 @@ class Runner {
     c.pid = pid;
     c.out_fd = fds[0];
     c.respawn_at.reset();
+    c.hung = false;
     std::string cmd;
     for (size_t i = 1; i < c.argv.size(); ++i) cmd += " " + c.argv[i];
+    if (c.respawns > 0) {
+      for (const auto& a : c.spec->respawn_args) cmd += " " + a;
+    }
     say("launch", "started " + c.spec->name + " (pid " + std::to_string(pid) + "): " +
                       std::filesystem::path(c.program).filename().string() + cmd);
   }
@@ -124,9 +132,29 @@ class Runner {
     if (!fds.empty()) ::poll(fds.data(), fds.size(), timeout_ms);
     else std::this_thread::sleep_for(std::chrono::milliseconds(timeout_ms));
     for (auto& c : children_) read_output(c, false);
+    watch_health();
     for (auto& c : children_) reap(c);
     for (auto& c : children_) {
       if (c.respawn_at && Clock::now() >= *c.respawn_at && !stop_ && !shutdown_requested()) start(c);
+    }
+  }
+
+  // A process that reported on uavmot/health and then fell silent for its hang_timeout while still
+  // alive hangs (its own writers' waits keep the reports going, so backpressure is not silence).
+  // SIGKILL works on a stopped process too; reap() then respawns it like any crash.
+  void watch_health() {
+    if (!health_ || stop_ || shutdown_requested()) return;
+    health_->poll();
+    for (auto& c : children_) {
+      if (c.pid <= 0 || c.hung || c.spec->hang_timeout_s <= 0.0) continue;
+      const auto silent = health_->silent_s(c.pid);
+      if (!silent || *silent < c.spec->hang_timeout_s) continue;
+      char line[160];
+      std::snprintf(line, sizeof(line), "%s (pid %d) hangs: no health report for %.1f s (hang_timeout %.1f s); killing it",
+                    c.spec->name.c_str(), static_cast<int>(c.pid), *silent, c.spec->hang_timeout_s);
+      say("launch", line);
+      c.hung = true;
+      ::kill(c.pid, SIGKILL);
     }
   }
 
@@ -163,7 +191,7 @@ class Runner {
     c.pid = -1;
     read_output(c, true);
     const bool failed = !(WIFEXITED(status) && WEXITSTATUS(status) == 0);
-    const std::string what = c.spec->name + " " + describe_status(status);
+    const std::string what = c.spec->name + " " + (c.hung ? "hung, " : "") + describe_status(status);
     if (failed && c.spec->respawn && c.respawns < c.spec->max_respawns && !stop_ && !shutdown_requested()) {
       ++c.respawns;
       c.respawn_at = after_seconds(c.spec->respawn_delay_s);
@@ -214,6 +242,7 @@ class Runner {
   }
 
   std::vector<Child> children_;
+  HealthMonitor* health_ = nullptr;
   size_t width_ = 6;
   bool stop_ = false;
   bool failed_required_ = false;
@@ -236,7 +265,7 @@ Supervisor::Supervisor(Profile resolved, SupervisorOptions options) : profile_(s
 
 int Supervisor::run() {
   ::signal(SIGPIPE, SIG_IGN);
-  Runner runner(profile_, programs_);
+  Runner runner(profile_, programs_, options_.health);
   return runner.run(options_.shutdown_grace_s);
 }
 

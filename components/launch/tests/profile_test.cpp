@@ -39,14 +39,16 @@ TEST(LaunchProfile, ShippedProfilesLoadAndResolve) {
 TEST(LaunchProfile, ReadsEveryField) {
   const auto file = write_profile("uavmot_profile_fields.yaml", R"(
 description: test
-variables: {domain: "3"}
+variables: {domain: "3", hang: "2.5"}
 common_args: [--domain, "${domain}"]
 processes:
   - name: a
     command: source
     args: ["${input}"]
     env: {X: "${domain}"}
+    hang_timeout: "${hang}"
     respawn: true
+    respawn_args: [--resume, "${domain}"]
     respawn_delay: 0.5
     max_respawns: 2
     stop_on_failure: true
@@ -66,6 +68,26 @@ processes:
   EXPECT_TRUE(profile.processes[0].stop_on_failure);
   EXPECT_TRUE(profile.processes[1].required);
   EXPECT_FALSE(profile.processes[1].common_args);
+  EXPECT_DOUBLE_EQ(profile.processes[0].hang_timeout_s, 2.5);
+  EXPECT_DOUBLE_EQ(profile.processes[1].respawn_delay_s, 1.0);  // the default
+  EXPECT_EQ(profile.processes[0].respawn_args, (std::vector<std::string>{"--resume", "3"}));
+  EXPECT_DOUBLE_EQ(profile.processes[1].hang_timeout_s, 0.0);  // the watchdog is off unless asked for
+}
+
+TEST(LaunchProfile, HangTimeoutMustBeSeconds) {
+  const auto file = write_profile("launch_hang.yaml", R"(
+variables: {hang: "soon", delay: "0.2"}
+processes:
+  - name: a
+    command: source
+    hang_timeout: "${hang}"
+    respawn_delay: "${delay}"
+)");
+  EXPECT_NE(error_of([&] { resolve(load_profile(file), {}); }).find("process 'a': hang_timeout is 'soon'"), std::string::npos);
+  EXPECT_DOUBLE_EQ(resolve(load_profile(file), {{"hang", "4"}}).processes[0].respawn_delay_s, 0.2);
+  EXPECT_NE(error_of([&] { resolve(load_profile(file), {{"hang", "4"}, {"delay", "x"}}); }).find("respawn_delay is 'x'"),
+            std::string::npos);
+  EXPECT_NE(error_of([&] { resolve(load_profile(file), {{"hang", "-1"}}); }).find("hang_timeout"), std::string::npos);
 }
 
 // Processes switched on by a variable, and writers that wait for exactly the readers that run.

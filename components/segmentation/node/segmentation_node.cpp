@@ -20,10 +20,14 @@ int segmentation_main(int argc, char** argv) {
   config::NodeConfigArgs config_args;
   std::string method;
   int streams = 1;
+  bool resume = false;
   return run_app(argc, argv, "segmentation", "segment moving objects (frames + motion -> clusters and regions)", [&](CLI::App& app) {
     config::add_node_config_options(app, config_args, "scene and segmentation");
     app.add_option("--segmentation", method, segmentation_method_choices())->check(CLI::IsMember(segmentation_method_names()));
     app.add_option("--streams", streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_flag("--resume", resume,
+                 "after a crash (lossless): also read the writers' recent history, so the frame that reached the killed "
+                 "process but not its output comes again (the frames already segmented come again too: readers skip them)");
     dds::add_node_options(app, node);
     return [&]() -> int {
       dds::finalize(node, "segmentation");
@@ -35,8 +39,9 @@ int segmentation_main(int argc, char** argv) {
       std::map<std::string, segmentation::Segmenter> segmenters;
       using Node = dds::PairedNode<msg::FramePubSubType, msg::MotionEstimatePubSubType, msg::SegmentationPubSubType, Frame, MotionEstimate>;
       Node paired(participant,
-                  {"segmentation", dds::kFramesTopic, dds::kMotionTopic, dds::kSegmentationTopic, dds::TopicClass::Frames,
-                   dds::TopicClass::Chain, streams, node.wait_subscribers},
+                  {"segmentation", dds::kFramesTopic, dds::kMotionTopic, dds::kSegmentationTopic,
+                   resume ? dds::TopicClass::FramesResume : dds::TopicClass::Frames,
+                   resume ? dds::TopicClass::ChainResume : dds::TopicClass::Chain, streams, node.wait_subscribers},
                   [&](const std::string& stream, int64_t, const Frame& frame, const MotionEstimate& motion) {
                     auto& segmenter = segmenters.try_emplace(stream, options, config.scene).first->second;
                     return std::optional(dds::to_msg(segmenter.process(frame, motion)));

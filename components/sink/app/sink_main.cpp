@@ -243,9 +243,12 @@ auto log_received = [](const auto& r) { spdlog::info("{}: {} samples, {} bytes r
 
 // The full chain topics (one host): each comes from one writer, in frame order; written as they arrive.
 int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
-  auto motion = participant.make_reader<msg::MotionEstimatePubSubType>(dds::kMotionTopic, dds::TopicClass::Chain);
-  auto segmentation = participant.make_reader<msg::SegmentationPubSubType>(dds::kSegmentationTopic, dds::TopicClass::Chain);
-  auto tracks = participant.make_reader<msg::TrackListPubSubType>(dds::kTracksTopic, dds::TopicClass::Chain);
+  // Resuming, the readers also get the writers' recent history (transient-local): what reached the
+  // killed sink's reader but not its files arrives again, and the frames the files hold are skipped.
+  const auto inputs = o.resume ? dds::TopicClass::ChainResume : dds::TopicClass::Chain;
+  auto motion = participant.make_reader<msg::MotionEstimatePubSubType>(dds::kMotionTopic, inputs);
+  auto segmentation = participant.make_reader<msg::SegmentationPubSubType>(dds::kSegmentationTopic, inputs);
+  auto tracks = participant.make_reader<msg::TrackListPubSubType>(dds::kTracksTopic, inputs);
   dds::HealthReporter health(participant, "sink", "*");
   health.watch(*motion);
   health.watch(*segmentation);

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <filesystem>
 #include <thread>
 
 #include <spdlog/spdlog.h>
@@ -16,6 +17,7 @@
 #include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/dds/node_support.hpp"
+#include "published_position.hpp"
 #include "uavmot/source/frame_prefetcher.hpp"
 #include "uavmot/source/frame_source.hpp"
 
@@ -29,11 +31,21 @@ int source_main(int argc, char** argv) {
   double rate_hz = 0.0;
   bool native_rate = false;
   double wait_timeout_s = 30.0;
+  int64_t first_index = 1;  // frame index on the wire of the first frame published
+  std::string state_dir;
 
   return run_app(argc, argv, "source", "publish frames of a video, image folder or MOTChallenge sequence", [&](CLI::App& app) {
     app.add_option("input", input.path, "video file, image folder or MOTChallenge sequence folder")->required();
     app.add_option("--stream-id", input.stream_id, "key of this stream (one per UAV)")->capture_default_str();
     app.add_option("--start", input.start_frame, "first input frame (1-based)")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--first-index", first_index,
+                   "number the published frames from this index (a run that continues an earlier one, e.g. with --start: "
+                   "a restored tracker skips the frames its state already holds)")
+        ->check(CLI::PositiveNumber)
+        ->capture_default_str();
+    app.add_option("--state-dir", state_dir,
+                   "save the index of every frame published here; on start, continue from the last one saved (sent "
+                   "again: it may not have arrived; readers skip what they have). For a respawned source");
     app.add_option("--count", input.max_frames, "number of frames (0 = all)")->check(CLI::NonNegativeNumber)->capture_default_str();
     app.add_flag("--loop", input.loop, "start again after the last frame");
     app.add_option("--color", color, "gray or color")->check(CLI::IsMember({"gray", "color"}))->capture_default_str();
@@ -49,6 +61,22 @@ int source_main(int argc, char** argv) {
       install_shutdown_handler();
       input.color = source::parse_color_mode(color);
       input.fps_override = rate_hz;
+      const std::string position_file = state_dir.empty() ? "" : source::published_position_file(state_dir, input.stream_id);
+      if (!state_dir.empty()) {
+        std::filesystem::create_directories(state_dir);
+        if (const auto last = source::load_published_position(position_file); last && *last >= first_index) {
+          if (input.loop) {
+            spdlog::warn("--loop: not continuing from frame {} ('{}'), starting again", *last, position_file);
+          } else {
+            const int64_t done = *last - first_index;  // frames fully behind us
+            input.start_frame += done;
+            if (input.max_frames > 0) input.max_frames -= done;
+            first_index = *last;
+            spdlog::info("continuing from frame {} (input frame {}), the last one published before ('{}')", *last,
+                         input.start_frame, position_file);
+          }
+        }
+      }
       auto frames = source::open_frame_source(input);
       const auto& info = frames->info();
       spdlog::info("{} '{}': {}x{}, {} frames, {:.3f} fps", info.kind, input.path, info.size.width, info.size.height,
@@ -88,6 +116,8 @@ int source_main(int argc, char** argv) {
       }
 
       Frame frame;
+      // Pacing and capture times count from the first frame published; only the index on the wire moves.
+      const int64_t index_offset = first_index - 1;
       int64_t published = 0, dropped_late = 0, reported_undecoded = 0;
       // Capture times go on the wire on the wall clock (stream start + (index - 1) / rate), so every
       // component can tell its latency; the results never depend on them.
@@ -122,6 +152,7 @@ int source_main(int argc, char** argv) {
           const auto t0 = std::chrono::steady_clock::now();
           frame.capture_time_ns += stream_start_ns;
           auto sample = dds::to_msg(frame);
+          sample.frame_index(frame.index + index_offset);
           const bool ok = lossless ? writer->write_reliably(sample) : writer->write(sample);
           if (handshake && published == 0) {
             const auto sent = Clock::now();
@@ -141,9 +172,12 @@ int source_main(int argc, char** argv) {
             health.dropped();
           }
           ++published;
+          if (!position_file.empty() && !source::save_published_position(position_file, frame.index + index_offset)) {
+            spdlog::warn("cannot write '{}'", position_file);
+          }
           health.frame_in();
           // Paced, the capture time is when the frame was due: latency shows how far the source lags behind.
-          health.frame_out(frame.index, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(),
+          health.frame_out(frame.index + index_offset, std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count(),
                            paced ? dds::latency_ms_since(frame.capture_time_ns) : 0.0);
           health.set_bytes_out(writer->bytes_sent());
           health.tick();
@@ -156,7 +190,7 @@ int source_main(int argc, char** argv) {
         exit_code = kExitBadInput;
       }
       const int64_t skipped_late = dropped_late + ahead.skipped_undecoded();
-      auto eos = dds::end_of_stream_frame(input.stream_id, std::max(frame.index, ahead.last_index()));
+      auto eos = dds::end_of_stream_frame(input.stream_id, std::max(frame.index, ahead.last_index()) + index_offset);
       writer->write_reliably(eos, dds::end_of_stream_patience(node.dds.mode));
       writer->flush(dds::end_of_stream_patience(node.dds.mode));
       health.report(exit_code == kExitOk ? msg::ComponentState::FINISHED : msg::ComponentState::FAILED);

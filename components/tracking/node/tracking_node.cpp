@@ -25,6 +25,7 @@ namespace {
 struct StreamTracker {
   tracking::Tracker tracker;
   int64_t restored_frame = 0;  // inputs up to this frame are already in the restored state
+  int64_t saved_frame = 0;     // the last frame whose state is in the state file
 };
 
 int tracking_main(int argc, char** argv) {
@@ -49,7 +50,7 @@ int tracking_main(int argc, char** argv) {
       auto state_file = [&](const std::string& stream) { return state_dir + "/tracker_state_" + stream + ".cdr"; };
 
       auto tracker_for = [&](const std::string& stream) -> StreamTracker& {
-        auto [it, fresh] = trackers.try_emplace(stream, StreamTracker{tracking::Tracker(options, config.scene), 0});
+        auto [it, fresh] = trackers.try_emplace(stream, StreamTracker{tracking::Tracker(options, config.scene), 0, 0});
         if (fresh && !state_dir.empty()) {
           if (auto snapshot = tracking::load_snapshot(state_file(stream))) {
             std::string why;
@@ -84,10 +85,17 @@ int tracking_main(int argc, char** argv) {
                     auto snapshot = tracking::to_msg(trackers.at(stream).tracker.state(), stream, index);
                     if (!tracking::save_snapshot(snapshot, state_file(stream))) {
                       spdlog::warn("cannot write tracker state '{}'", state_file(stream));
+                    } else {
+                      trackers.at(stream).saved_frame = index;
                     }
                     state_out->write(snapshot);
                   });
-      return paired.run();
+      const int code = paired.run();
+      // Where a later run picks up (docs/launch.md: a new launch continues from the saved state).
+      for (const auto& [stream, s] : trackers) {
+        if (s.saved_frame > 0) spdlog::info("stream '{}': state saved at frame {} in '{}'", stream, s.saved_frame, state_file(stream));
+      }
+      return code;
     };
   });
 }

@@ -6,6 +6,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -29,6 +30,16 @@ class HealthReporter {
 
   // Reports what this writer wrote / this reader took, per topic, on every health report
   // (`uavmot status` turns successive counts into bytes/s). The endpoint must outlive the reporter.
+  // A writer this component publishes with also ticks the reports while it waits for its readers
+  // (lossless backpressure): reports stop only when the component itself stops. Only on the thread
+  // that made the reporter, the one that reports.
+  template <class PubSubType>
+  void watch(TopicWriter<PubSubType>& writer) {
+    writer.set_while_waiting([this, owner = std::this_thread::get_id()] {
+      if (std::this_thread::get_id() == owner) tick();
+    });
+    watch(static_cast<const TopicWriter<PubSubType>&>(writer));
+  }
   template <class PubSubType>
   void watch(const TopicWriter<PubSubType>& writer) {
     watched_.emplace_back(writer.topic(), [&writer](msg::TopicTraffic& t) {

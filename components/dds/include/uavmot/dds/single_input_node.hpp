@@ -91,9 +91,13 @@ class SingleInputNode {
       rejects_.log(spec_.input, why);
       return;
     }
-    // Each stream's inputs come in frame order: a gap is frames the writer dropped (live mode).
+    // Each stream's inputs come in frame order: a gap is frames the writer dropped (live mode); an
+    // index seen already is a respawned writer sending its last sample again (it cannot know that
+    // sample arrived), so it is skipped.
     const int64_t index = sample.frame_index();
-    if (auto it = last_index_.find(stream); it != last_index_.end() && index > it->second + 1) {
+    if (auto it = last_index_.find(stream); it != last_index_.end() && index <= it->second) {
+      return;
+    } else if (it != last_index_.end() && index > it->second + 1) {
       health_.dropped(static_cast<uint64_t>(index - it->second - 1));
     }
     last_index_[stream] = index;

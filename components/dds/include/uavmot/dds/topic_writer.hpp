@@ -3,6 +3,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <string>
 #include <thread>
 
@@ -54,6 +55,7 @@ class TopicWriter {
         return false;
       }
       writer_->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(0, 100000000));
+      waiting();
     }
     count_sent(sample);
     return true;
@@ -65,6 +67,7 @@ class TopicWriter {
     while (writer_->wait_for_acknowledgments(eprosima::fastrtps::Duration_t(0, 100000000)) !=
            eprosima::fastrtps::types::ReturnCode_t::RETCODE_OK) {
       if (matched() == 0) return true;  // the readers left; nobody to wait for
+      waiting();
       if (std::chrono::steady_clock::now() > deadline || shutdown_requested()) {
         spdlog::error("{}: samples not acknowledged by every reader within {} ms", topic_, timeout.count());
         return false;
@@ -89,9 +92,15 @@ class TopicWriter {
     while (matched() < count) {
       if (std::chrono::steady_clock::now() > deadline || shutdown_requested()) return false;
       std::this_thread::sleep_for(std::chrono::milliseconds(20));
+      waiting();
     }
     return true;
   }
+
+  // Called about every 100 ms while a call above waits for readers (HealthReporter::watch installs
+  // its tick): a component held back by a slow or stopped reader keeps reporting, so the launcher's
+  // watchdog tells it from a component that hangs itself (docs/launch.md).
+  void set_while_waiting(std::function<void()> f) { while_waiting_ = std::move(f); }
 
   uint64_t samples_sent() const { return samples_sent_; }
   uint64_t bytes_sent() const { return bytes_sent_; }
@@ -104,8 +113,13 @@ class TopicWriter {
     bytes_sent_ += type_.getSerializedSizeProvider(&sample)();
   }
 
+  void waiting() const {
+    if (while_waiting_) while_waiting_();
+  }
+
   eprosima::fastdds::dds::DataWriter* writer_;
   std::string topic_;
+  std::function<void()> while_waiting_;
   PubSubType type_;
   int required_readers_ = 0;
   uint64_t samples_sent_ = 0;

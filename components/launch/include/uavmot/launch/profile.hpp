@@ -22,9 +22,16 @@ struct ProcessSpec {
   bool required = false;         // its exit ends the launch (non-zero exit of the launch if it failed)
   bool stop_on_failure = false;  // its failure (after respawns) ends the launch with a non-zero exit
   bool respawn = false;        // restart after a failure (non-zero exit or signal)
+  std::vector<std::string> respawn_args;  // appended to args when respawned (e.g. the sink's --resume)
+  std::string respawn_delay = "1.0";  // seconds; a string until resolve() ("${var}" allowed), then respawn_delay_s
   double respawn_delay_s = 1.0;
   int max_respawns = 3;
   double start_delay_s = 0.2;  // pause after starting it, before the next one
+  // Watchdog: once the process has reported on uavmot/health, reports that stop for this long while
+  // it is alive mean it hangs; it is killed and handled like a crash (respawn policy). 0: off.
+  // A string until resolve(), so a profile can write "${hang_timeout}"; then hang_timeout_s.
+  std::string hang_timeout = "0";
+  double hang_timeout_s = 0.0;
 };
 
 struct Profile {
