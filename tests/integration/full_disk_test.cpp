@@ -20,7 +20,7 @@
 #include "framePubSubTypes.h"
 #include "uavmot/core/error.hpp"
 #include "uavmot/mcap/reader.hpp"
-#include "uavmot/record/cdr_payload.hpp"
+#include "uavmot/dds/cdr_sample.hpp"
 
 namespace uavmot {
 namespace {
@@ -143,7 +143,7 @@ std::vector<int64_t> recorded_frames(const std::string& file) {
     while (cursor.next(m)) {
       msg::FramePubSubType type;
       msg::Frame frame;
-      record::from_cdr(type, m.data, m.size, frame, "test");
+      dds::from_cdr(type, m.data, m.size, frame, "test");
       indices.push_back(frame.frame_index());
     }
   } catch (const InputError& e) {
