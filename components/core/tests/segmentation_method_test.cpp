@@ -1,5 +1,11 @@
 #include "uavmot/core/segmentation_method.hpp"
 
+#include <cctype>
+#include <fstream>
+#include <regex>
+#include <sstream>
+#include <utility>
+
 #include <gtest/gtest.h>
 
 #include "uavmot/core/error.hpp"
@@ -21,6 +27,44 @@ TEST(SegmentationMethod, ListPositionIsTheWireNumber) {
   // The paper's methods keep their numbers (recordings and the downlink carry them).
   EXPECT_EQ(static_cast<int>(SegmentationMethod::Clustering), 0);
   EXPECT_EQ(static_cast<int>(SegmentationMethod::Fusion), 4);
+}
+
+// The list is generated from the IDL's enum (cmake/segmentation_methods_from_idl.cmake): read the
+// enum here another way and compare, names upper-cased, in order.
+TEST(SegmentationMethod, ListIsTheIdlEnum) {
+  std::ifstream idl(UAVMOT_SOURCE_DIR "/idl/segmentation.idl");
+  ASSERT_TRUE(idl) << UAVMOT_SOURCE_DIR "/idl/segmentation.idl";
+  std::stringstream text;
+  text << idl.rdbuf();
+  std::string source = std::regex_replace(text.str(), std::regex(R"(//[^\n]*)"), "");
+  source = std::regex_replace(source, std::regex(R"(/\*[\s\S]*?\*/)"), "");
+  std::smatch block;
+  ASSERT_TRUE(std::regex_search(source, block, std::regex(R"(enum\s+SegmentationMethod\s*\{([^}]*)\})")));
+  std::vector<std::string> idl_names;
+  const std::string body = block[1];
+  const std::regex enumerator(R"([A-Za-z_0-9]+)");
+  for (std::sregex_iterator it(body.begin(), body.end(), enumerator), end; it != end; ++it) {
+    idl_names.push_back(it->str());
+  }
+  std::vector<std::string> names;
+  for (std::string name : segmentation_method_names()) {
+    for (char& c : name) c = static_cast<char>(std::toupper(static_cast<unsigned char>(c)));
+    names.push_back(name);
+  }
+  EXPECT_EQ(names, idl_names);
+}
+
+// The paper's methods keep their names (configs) and numbers (recordings, the downlink).
+TEST(SegmentationMethod, PaperMethodsKeepTheirNamesAndNumbers) {
+  const std::vector<std::pair<SegmentationMethod, std::string>> paper = {
+      {SegmentationMethod::Clustering, "clustering"}, {SegmentationMethod::Korn, "korn"},
+      {SegmentationMethod::Morphological, "morphological"}, {SegmentationMethod::Lbp, "lbp"},
+      {SegmentationMethod::Fusion, "fusion"}};
+  ASSERT_GE(kSegmentationMethods.size(), paper.size());
+  for (size_t i = 0; i < paper.size(); ++i) {
+    EXPECT_EQ(kSegmentationMethods[i], paper[i].first) << i;
+    EXPECT_EQ(to_string(paper[i].first), paper[i].second) << i;
+  }
 }
 
 TEST(SegmentationMethod, UnknownNameNamesTheChoices) {

@@ -17,7 +17,10 @@ cv::Mat lbp(const cv::Mat& gray, const GradientOptions& g) {
 
 }  // namespace
 
-// No default: a method added to the list without a case here does not compile (-Wswitch).
+// Registration: each method's accumulator above and its case here, in this one file; the list of
+// methods comes from the IDL. A plain switch rather than a registry of static registrars: no
+// initialisation order, one place to read, and no default, so a method added to the IDL without
+// a case here does not compile (-Wswitch, an error with -Werror).
 MethodGradient method_gradient(SegmentationMethod method) {
   switch (method) {
     case SegmentationMethod::Clustering: return {};

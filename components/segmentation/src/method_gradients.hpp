@@ -1,6 +1,7 @@
 #pragma once
 // What each segmentation method computes on a cluster's window (paper III-B): the one place a
-// gradient method is defined. The methods themselves are listed in uavmot/core/segmentation_method.hpp.
+// gradient method is defined. The methods themselves are listed once, in the enum SegmentationMethod
+// of idl/segmentation.idl, which the build turns into core's list (uavmot/core/segmentation_method.hpp).
 
 #include <opencv2/core/mat.hpp>
 

@@ -1,21 +1,19 @@
 #pragma once
-// The segmentation methods, listed once. A method's name is how configs, command lines and the
-// tracker's region_method spell it; its position in the list is its number on the wire, so the
-// enum SegmentationMethod of idl/segmentation.idl lists the same methods in the same order
-// (dds_tests checks it). Adding a method: docs/developing.md, "Worked example: add a segmentation method".
+// The segmentation methods. They are listed once, in the enum SegmentationMethod of
+// idl/segmentation.idl (the wire contract); the build writes that list as the X-macro
+// UAVMOT_SEGMENTATION_METHODS(X) into uavmot/core/segmentation_methods.inc
+// (cmake/segmentation_methods_from_idl.cmake), so core reads the IDL's text and never Fast DDS.
+// X(enumerator, name): IDL KORN -> X(Korn, "korn"); SOME_METHOD -> X(SomeMethod, "some_method").
+// A method's name is how configs, command lines and the tracker's region_method spell it; its
+// position in the list is its number on the wire. Append only: recordings keep the numbers.
+// Adding a method: docs/developing.md, "Worked example: add a segmentation method".
 
 #include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
 
-// X(enumerator, name) for every method, in wire order. Append only: recordings keep the numbers.
-#define UAVMOT_SEGMENTATION_METHODS(X) \
-  X(Clustering, "clustering")          \
-  X(Korn, "korn")                      \
-  X(Morphological, "morphological")    \
-  X(Lbp, "lbp")                        \
-  X(Fusion, "fusion")
+#include "uavmot/core/segmentation_methods.inc"
 
 namespace uavmot {
 
