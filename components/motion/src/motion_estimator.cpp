@@ -395,6 +395,10 @@ uint64_t options_fingerprint(const MotionOptions& o) {
 
 std::vector<uint8_t> MotionEstimator::Impl::save_state() const {
   state_codec::Writer w;
+  size_t feature_bytes = 0;
+  for (const auto& f : features_) feature_bytes += 58 + 16 * f.history.positions().size();
+  const size_t image_bytes = previous_.empty() ? 0 : previous_.size.area();
+  w.reserve(256 + 8 * detector_.state().retry_at.size() + image_bytes + feature_bytes);
   w.put(options_fingerprint(options_));
   w.put(last_frame_index_);
   w.put(next_id_);
@@ -441,6 +445,7 @@ std::vector<uint8_t> MotionEstimator::Impl::save_state() const {
   }
   const std::vector<uint8_t>& payload = w.bytes();
   state_codec::Writer out;
+  out.reserve(kStateHeaderBytes + payload.size());
   out.put_bytes(kStateMagic, sizeof kStateMagic);
   out.put(kStateVersion);
   out.put(static_cast<uint64_t>(payload.size()));

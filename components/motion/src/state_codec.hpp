@@ -24,15 +24,16 @@ class Writer {
       bytes_.push_back(value ? 1 : 0);
     } else {
       // Stored little-endian, the byte order of every target this runs on (x86-64, aarch64).
-      unsigned char raw[sizeof(T)];
-      std::memcpy(raw, &value, sizeof(T));
-      bytes_.insert(bytes_.end(), raw, raw + sizeof(T));
+      const size_t at = bytes_.size();
+      bytes_.resize(at + sizeof(T));
+      std::memcpy(bytes_.data() + at, &value, sizeof(T));
     }
   }
   void put_bytes(const void* data, size_t size) {
     const auto* p = static_cast<const uint8_t*>(data);
     bytes_.insert(bytes_.end(), p, p + size);
   }
+  void reserve(size_t size) { bytes_.reserve(size); }
   std::vector<uint8_t>& bytes() { return bytes_; }
 
  private:
