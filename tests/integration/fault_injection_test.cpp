@@ -150,6 +150,53 @@ INSTANTIATE_TEST_SUITE_P(EveryComponent, FaultInjection,
                          name_of);
 
 
+// The downlink (bringup/air.yaml + bringup/ground.yaml, both on this host: the link on domain
+// base + 16 over UDP, the air's own processes on base + 17 over shared memory), lossless, SIGKILLed
+// once the ground sink has written tracks past frame 40. It is respawned with --resume: its readers
+// get the air chain writers' last 64 samples, so what it had taken but not sent comes again, and the
+// ground sink skips the frames it has. The ground's files (what the link carries: no features.csv,
+// no clusters.txt) must be byte-identical to the undisturbed local run's.
+TEST_F(ChainRuns, DownlinkSigkillMidRun) {
+  ASSERT_FALSE(root_.empty());
+  const std::string name = "downlink_SIGKILL";
+  const std::string ground_out = root_ + "/" + name + "_ground";
+  const std::string link_domain = "domain=" + std::to_string(domain(16));
+  ChildProcess ground({binary("uavmot"), "launch", std::string(UAVMOT_SOURCE_DIR) + "/bringup/ground.yaml", "--input",
+                       sequence_, "--out", ground_out, "--set", link_domain},
+                      root_ + "/" + name + "_ground.log");
+  ChildProcess air({binary("uavmot"), "launch", std::string(UAVMOT_SOURCE_DIR) + "/bringup/air.yaml", "--input", sequence_,
+                    "--out", root_ + "/" + name + "_air", "--set", link_domain, "--set",
+                    "air_domain=" + std::to_string(domain(17))},
+                   root_ + "/" + name + "_air.log");
+  int victim = -1;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(180);
+  while (victim < 0 && std::chrono::steady_clock::now() < deadline && !air.wait(std::chrono::milliseconds(0))) {
+    const int pid = testing::launched_pid(air.log(), "downlink");
+    if (pid > 0 && testing::last_frame_written(ground_out + "/tracks_obb.csv") >= 40) {
+      ASSERT_EQ(::kill(pid, SIGKILL), 0);
+      victim = pid;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_GT(victim, 0) << air.log() << ground.log();
+  const auto air_code = air.wait(std::chrono::seconds(300));
+  const auto ground_code = ground.wait(std::chrono::seconds(120));
+  if (!air_code) air.signal(SIGKILL);
+  if (!ground_code) ground.signal(SIGKILL);
+  ASSERT_TRUE(air_code.has_value() && ground_code.has_value()) << "a launch did not end\n" << air.log() << ground.log();
+  EXPECT_NE(air.log().find("downlink killed by signal 9"), std::string::npos) << air.log();
+  std::string differing;
+  for (const char* file : {"homographies.txt", "tracks.txt", "tracks_obb.csv", "regions.txt"}) {
+    if (testing::read_file(ground_out + "/" + file) != testing::read_file(root_ + "/undisturbed/" + file)) differing += std::string(" ") + file;
+  }
+  std::printf("%s at frame %d: air exit %d, ground exit %d; ground files differing from the undisturbed run:%s\n", name.c_str(),
+              testing::last_frame_written(ground_out + "/tracks_obb.csv"), *air_code, *ground_code,
+              differing.empty() ? " none" : differing.c_str());
+  EXPECT_EQ(*air_code, 0) << air.log();
+  EXPECT_EQ(*ground_code, 0) << ground.log();
+  EXPECT_EQ(differing, "") << air.log() << ground.log();
+}
+
 // Live mode: SIGKILL of each component while the source publishes at the camera's rate (25 fps,
 // 300 frames), respawn_delay 0.2 s. Recovery: from the kill to the first tracks the sink writes for a
 // frame published after the launcher restarted the component. Frames published while a component
