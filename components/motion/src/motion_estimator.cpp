@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <deque>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -541,6 +542,7 @@ void MotionEstimator::Impl::restore_state(const std::vector<uint8_t>& bytes) {
     for (uint64_t k = 0; k < n; ++k) {
       const double x = r.get<double>();
       const double y = r.get<double>();
+      if (!std::isfinite(x) || !std::isfinite(y)) r.fail("feature " + std::to_string(f.id) + " has a non-finite history position");
       history.emplace_back(x, y);
     }
     f.history.restore(std::move(history));
@@ -551,8 +553,13 @@ void MotionEstimator::Impl::restore_state(const std::vector<uint8_t>& bytes) {
     const bool moving = r.get<bool>();
     const int streak = r.get<int32_t>();
     f.classifier.restore(moving, streak);
-    if (!std::isfinite(f.position.x) || !std::isfinite(f.position.y) || f.age < 1) {
-      r.fail("feature " + std::to_string(f.id) + " has a non-finite position or no age");
+    if (!std::isfinite(f.position.x) || !std::isfinite(f.position.y) || f.age < 1 ||
+        f.age > static_cast<uint32_t>(std::numeric_limits<int>::max())) {
+      r.fail("feature " + std::to_string(f.id) + " has a non-finite position or an impossible age");
+    }
+    if (!std::isfinite(f.velocity.velocity[0]) || !std::isfinite(f.velocity.velocity[1]) ||
+        !(f.velocity.sigma >= 0.0) || !std::isfinite(f.velocity.sigma) || streak < 0) {
+      r.fail("feature " + std::to_string(f.id) + " has a non-finite velocity or a negative streak");
     }
   }
   if (r.remaining() != 0) r.fail(std::to_string(r.remaining()) + " bytes left over after the features");

@@ -1,12 +1,16 @@
 // MotionEstimator::save_state / restore_state: an estimator restored from a state continues with
 // the same bytes as the one that saved it; a bad state is refused with InputError and changes nothing.
+#include <cstdio>
 #include <cstring>
+#include <random>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <opencv2/imgproc.hpp>
 
 #include "test_support.hpp"
+#include "uavmot/core/checksum.hpp"
 #include "uavmot/core/error.hpp"
 
 namespace uavmot::motion {
@@ -151,6 +155,52 @@ TEST(SavedState, OtherOptionsAreRefused) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("other motion options"), std::string::npos) << e.what();
   }
+}
+
+
+// Damage that keeps the checksum valid (a state written wrongly, not torn): random bytes of the
+// payload changed and the checksum recomputed. Each is refused with InputError or, if every check
+// passes, the estimator carries on through the next frames without crashing.
+TEST(SavedState, MutatedStatesWithAValidChecksumNeverCrash) {
+  cv::Mat ground(200, 200, CV_8UC1);
+  cv::RNG texture(7);
+  texture.fill(ground, cv::RNG::UNIFORM, 0, 255);
+  cv::GaussianBlur(ground, ground, cv::Size(5, 5), 1.5);
+  auto small_frame = [&](int k) {
+    return test::make_frame(ground(cv::Rect(10 + 2 * (k % 40), 20 + (k % 40), 64, 48)).clone(), k);
+  };
+  MotionEstimator saver(MotionOptions{});
+  for (int k = 1; k <= 6; ++k) saver.process(small_frame(k));
+  const std::vector<uint8_t> good = saver.save_state();
+  constexpr size_t kHeader = 28;
+  ASSERT_GT(good.size(), kHeader + 3000);
+  std::mt19937_64 rng(11);
+  int accepted = 0, refused = 0;
+  for (int trial = 0; trial < 3000; ++trial) {
+    std::vector<uint8_t> bytes = good;
+    const int changes = 1 + static_cast<int>(rng() % 4);
+    for (int c = 0; c < changes; ++c) {
+      // Mostly the fields before and after the image (counts, ids, sizes, doubles), sometimes any byte.
+      const size_t span = bytes.size() - kHeader;
+      size_t at = kHeader + static_cast<size_t>(rng() % span);
+      if (rng() % 2 == 0) at = kHeader + static_cast<size_t>(rng() % 200);
+      bytes[at] = static_cast<uint8_t>(rng());
+    }
+    const uint64_t checksum = fnv1a64(bytes.data() + kHeader, bytes.size() - kHeader);
+    std::memcpy(bytes.data() + 20, &checksum, sizeof checksum);
+    MotionEstimator target(MotionOptions{});
+    try {
+      target.restore_state(bytes);
+    } catch (const InputError&) {
+      ++refused;
+      continue;
+    }
+    ++accepted;
+    for (int k = 7; k <= 8; ++k) target.process(small_frame(k));
+  }
+  std::printf("mutated states: %d refused, %d accepted and carried through two frames\n", refused, accepted);
+  EXPECT_GT(refused, 0);
+  EXPECT_GT(accepted, 0);
 }
 
 }  // namespace
