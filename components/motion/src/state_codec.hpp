@@ -2,6 +2,7 @@
 // Little-endian byte writer and bounds-checked reader for the estimator's saved state
 // (MotionEstimator::save_state). Plain C++, no DDS: the file format is the library's own.
 
+#include <bit>
 #include <cstdint>
 #include <cstring>
 #include <string>
@@ -14,6 +15,7 @@
 namespace uavmot::motion::state_codec {
 
 static_assert(sizeof(double) == 8 && sizeof(float) == 4, "IEEE 754 floats expected");
+static_assert(std::endian::native == std::endian::little, "the state format is little-endian, stored as in memory");
 
 class Writer {
  public:
