@@ -14,5 +14,6 @@ int sample_validators(const uint8_t* data, size_t size);  // CDR bytes -> chain/
 int config(const uint8_t* data, size_t size);             // YAML text -> ConfigNode, scene, launch profile
 int eval_files(const uint8_t* data, size_t size);         // first byte picks the file kind, rest is its text
 int recording(const uint8_t* data, size_t size);          // MCAP bytes -> eval --recording, recover, again
+int motion_state(const uint8_t* data, size_t size);       // bytes -> MotionEstimator::restore_state, two frames
 
 }  // namespace uavmot::fuzz

@@ -3,18 +3,18 @@
 // the sink has written tracks past frame 40 of 120. The outcome is compared with an undisturbed run.
 //
 // What each component's fault leads to (issue 20; docs/launch.md "Faults, component by component"):
-// - tracking, sink, segmentation, source: respawned, and the result files are byte-identical to the
-//   undisturbed run's. The tracker restores its saved state; the sink (--resume) keeps its files;
-//   segmentation (--resume) keeps no state; the source continues after the last frame it published.
-//   Each gets again what reached its killed predecessor but not its output (transient-local
-//   readers; the source resends its last frame), and what comes twice is skipped downstream.
-// - motion: respawned, and the run ends (exit 0) with every frame, but the files are not those of
-//   the undisturbed run: motion's estimator state (previous frame, features tracked over many
-//   frames) is not saved, so its estimates after the fault differ.
+// - every component (tracking, sink, segmentation, motion, source): respawned, and the result files
+//   are byte-identical to the undisturbed run's. The tracker and motion restore their saved state
+//   (written after every frame); the sink (--resume) keeps its files; segmentation (--resume) keeps
+//   no state; the source continues after the last frame it published. Each gets again what reached
+//   its killed predecessor but not its output (transient-local readers; the source resends its last
+//   frame), and what comes twice is skipped downstream.
 // Live mode: SIGKILL of each component, and the time until tracks flow again.
 
 #include <signal.h>
 
+#include <cstdlib>
+#include <string>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -28,6 +28,13 @@ using testing::binary;
 using testing::ChildProcess;
 
 enum class Outcome { Identical, Recovered, LaunchFails };
+
+// The cases' DDS domains are 190 + 0..15; UAVMOT_FAULT_DOMAIN_BASE moves them (e.g. to 206-221), so
+// two checkouts can run this suite on one host at the same time without meeting.
+int domain(int offset) {
+  const char* base = std::getenv("UAVMOT_FAULT_DOMAIN_BASE");
+  return (base != nullptr && *base != '\0' ? std::atoi(base) : 190) + offset;
+}
 // Live mode: results flow again within this long after a SIGKILL. Issue 20 asks for 2 s; on this
 // 2-core host (load about 10), with respawn_delay 0.2: tracking 1.01 s, sink 1.62, segmentation
 // 1.75, motion 2.09, source 1.61 (tracks of a frame published after the restart). Starting a
@@ -40,7 +47,7 @@ struct Fault {
   const char* component;
   int signal;
   Outcome expected;
-  int domain;
+  int domain;  // offset from the suite's base (domain())
 };
 
 std::string name_of(const ::testing::TestParamInfo<Fault>& info) {
@@ -60,7 +67,7 @@ class ChainRuns : public ::testing::Test {
                      root + "/sim.log");
     ASSERT_EQ(sim.wait(std::chrono::seconds(180)), 0) << sim.log();
     ChildProcess undisturbed({binary("uavmot"), "launch", testing::kLocalProfile, "--input", sequence, "--out",
-                              root + "/undisturbed", "--set", "domain=190", "--set", "hang_timeout=7"},
+                              root + "/undisturbed", "--set", "domain=" + std::to_string(domain(0)), "--set", "hang_timeout=7"},
                              root + "/undisturbed.log");
     ASSERT_EQ(undisturbed.wait(std::chrono::seconds(300)), 0) << undisturbed.log();
     root_ = root;
@@ -78,7 +85,7 @@ TEST_P(FaultInjection, ComponentFaultMidRun) {
   const std::string name = name_of({f, 0});
   const std::string out = root_ + "/" + name;
   ChildProcess launch({binary("uavmot"), "launch", testing::kLocalProfile, "--input", sequence_, "--out", out, "--set",
-                       "domain=" + std::to_string(f.domain), "--set", "hang_timeout=7"},
+                       "domain=" + std::to_string(domain(f.domain)), "--set", "hang_timeout=7"},
                       root_ + "/" + name + ".log");
   int victim = -1;
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(180);
@@ -130,18 +137,65 @@ TEST_P(FaultInjection, ComponentFaultMidRun) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryComponent, FaultInjection,
-                         ::testing::Values(Fault{"tracking", SIGKILL, Outcome::Identical, 191},
-                                           Fault{"tracking", SIGSTOP, Outcome::Identical, 192},
-                                           Fault{"sink", SIGKILL, Outcome::Identical, 193},
-                                           Fault{"sink", SIGSTOP, Outcome::Identical, 194},
-                                           Fault{"segmentation", SIGKILL, Outcome::Identical, 195},
-                                           Fault{"segmentation", SIGSTOP, Outcome::Identical, 196},
-                                           Fault{"motion", SIGKILL, Outcome::Recovered, 197},
-                                           Fault{"motion", SIGSTOP, Outcome::Recovered, 198},
-                                           Fault{"source", SIGKILL, Outcome::Identical, 199},
-                                           Fault{"source", SIGSTOP, Outcome::Identical, 200}),
+                         ::testing::Values(Fault{"tracking", SIGKILL, Outcome::Identical, 1},
+                                           Fault{"tracking", SIGSTOP, Outcome::Identical, 2},
+                                           Fault{"sink", SIGKILL, Outcome::Identical, 3},
+                                           Fault{"sink", SIGSTOP, Outcome::Identical, 4},
+                                           Fault{"segmentation", SIGKILL, Outcome::Identical, 5},
+                                           Fault{"segmentation", SIGSTOP, Outcome::Identical, 6},
+                                           Fault{"motion", SIGKILL, Outcome::Identical, 7},
+                                           Fault{"motion", SIGSTOP, Outcome::Identical, 8},
+                                           Fault{"source", SIGKILL, Outcome::Identical, 9},
+                                           Fault{"source", SIGSTOP, Outcome::Identical, 10}),
                          name_of);
 
+
+// The downlink (bringup/air.yaml + bringup/ground.yaml, both on this host: the link on domain
+// base + 16 over UDP, the air's own processes on base + 17 over shared memory), lossless, SIGKILLed
+// once the ground sink has written tracks past frame 40. It is respawned with --resume: its readers
+// get the air chain writers' last 64 samples, so what it had taken but not sent comes again, and the
+// ground sink skips the frames it has. The ground's files (what the link carries: no features.csv,
+// no clusters.txt) must be byte-identical to the undisturbed local run's.
+TEST_F(ChainRuns, DownlinkSigkillMidRun) {
+  ASSERT_FALSE(root_.empty());
+  const std::string name = "downlink_SIGKILL";
+  const std::string ground_out = root_ + "/" + name + "_ground";
+  const std::string link_domain = "domain=" + std::to_string(domain(16));
+  ChildProcess ground({binary("uavmot"), "launch", std::string(UAVMOT_SOURCE_DIR) + "/bringup/ground.yaml", "--input",
+                       sequence_, "--out", ground_out, "--set", link_domain},
+                      root_ + "/" + name + "_ground.log");
+  ChildProcess air({binary("uavmot"), "launch", std::string(UAVMOT_SOURCE_DIR) + "/bringup/air.yaml", "--input", sequence_,
+                    "--out", root_ + "/" + name + "_air", "--set", link_domain, "--set",
+                    "air_domain=" + std::to_string(domain(17))},
+                   root_ + "/" + name + "_air.log");
+  int victim = -1;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(180);
+  while (victim < 0 && std::chrono::steady_clock::now() < deadline && !air.wait(std::chrono::milliseconds(0))) {
+    const int pid = testing::launched_pid(air.log(), "downlink");
+    if (pid > 0 && testing::last_frame_written(ground_out + "/tracks_obb.csv") >= 40) {
+      ASSERT_EQ(::kill(pid, SIGKILL), 0);
+      victim = pid;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+  ASSERT_GT(victim, 0) << air.log() << ground.log();
+  const auto air_code = air.wait(std::chrono::seconds(300));
+  const auto ground_code = ground.wait(std::chrono::seconds(120));
+  if (!air_code) air.signal(SIGKILL);
+  if (!ground_code) ground.signal(SIGKILL);
+  ASSERT_TRUE(air_code.has_value() && ground_code.has_value()) << "a launch did not end\n" << air.log() << ground.log();
+  EXPECT_NE(air.log().find("downlink killed by signal 9"), std::string::npos) << air.log();
+  std::string differing;
+  for (const char* file : {"homographies.txt", "tracks.txt", "tracks_obb.csv", "regions.txt"}) {
+    if (testing::read_file(ground_out + "/" + file) != testing::read_file(root_ + "/undisturbed/" + file)) differing += std::string(" ") + file;
+  }
+  std::printf("%s at frame %d: air exit %d, ground exit %d; ground files differing from the undisturbed run:%s\n", name.c_str(),
+              testing::last_frame_written(ground_out + "/tracks_obb.csv"), *air_code, *ground_code,
+              differing.empty() ? " none" : differing.c_str());
+  EXPECT_EQ(*air_code, 0) << air.log();
+  EXPECT_EQ(*ground_code, 0) << ground.log();
+  EXPECT_EQ(differing, "") << air.log() << ground.log();
+}
 
 // Live mode: SIGKILL of each component while the source publishes at the camera's rate (25 fps,
 // 300 frames), respawn_delay 0.2 s. Recovery: from the kill to the first tracks the sink writes for a
@@ -149,7 +203,7 @@ INSTANTIATE_TEST_SUITE_P(EveryComponent, FaultInjection,
 // is down are lost on purpose in live mode; what is measured is how long results stop.
 struct LiveFault {
   const char* component;
-  int domain;
+  int domain;  // offset from the suite's base (domain())
 };
 
 // A longer sequence of its own (300 frames, 12 s at 25 fps): a looped input would not do, since a
@@ -177,7 +231,7 @@ TEST_P(LiveFaultInjection, ResultsFlowAgainAfterARespawn) {
   const std::string name = std::string("live_") + f.component;
   const std::string out = root_ + "/" + name;
   ChildProcess launch({binary("uavmot"), "launch", testing::kLocalProfile, "--input", sequence_, "--out", out, "--set",
-                       "domain=" + std::to_string(f.domain), "--set", "mode=live", "--set",
+                       "domain=" + std::to_string(domain(f.domain)), "--set", "mode=live", "--set",
                        "respawn_delay=" + std::string(kLiveRespawnDelay)},
                       root_ + "/" + name + ".log");
   using Clock = std::chrono::steady_clock;
@@ -222,8 +276,8 @@ TEST_P(LiveFaultInjection, ResultsFlowAgainAfterARespawn) {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryComponent, LiveFaultInjection,
-                         ::testing::Values(LiveFault{"tracking", 201}, LiveFault{"sink", 202}, LiveFault{"segmentation", 203},
-                                           LiveFault{"motion", 204}, LiveFault{"source", 205}),
+                         ::testing::Values(LiveFault{"tracking", 11}, LiveFault{"sink", 12}, LiveFault{"segmentation", 13},
+                                           LiveFault{"motion", 14}, LiveFault{"source", 15}),
                          live_name_of);
 
 }  // namespace

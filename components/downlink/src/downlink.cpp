@@ -65,7 +65,7 @@ int run_downlink(DownlinkOptions o) {
   dds::Participant link(link_options);
 
   dds::HealthReporter health(link, "downlink", o.stream_id);
-  ResultsRelay results(air, link, o.link.wait_subscribers, health);
+  ResultsRelay results(air, link, o.link.wait_subscribers, health, o.resume);
   auto air_health = air.make_reader<msg::ComponentHealthPubSubType>(dds::kHealthTopic, dds::TopicClass::Health);
   auto link_health = link.make_writer<msg::ComponentHealthPubSubType>(dds::kHealthTopic, dds::TopicClass::Health);
   health.watch(*air_health);

@@ -25,11 +25,13 @@ void strip(TrackList&) {}
 
 }  // namespace
 
-ResultsRelay::ResultsRelay(dds::Participant& air, dds::Participant& link, int required_readers, dds::HealthReporter& health)
+ResultsRelay::ResultsRelay(dds::Participant& air, dds::Participant& link, int required_readers, dds::HealthReporter& health,
+                           bool resume)
     : mode_(link.options().mode),
-      motion_(air.make_reader<msg::MotionEstimatePubSubType>(dds::kMotionTopic, dds::TopicClass::Chain)),
-      segmentation_(air.make_reader<msg::SegmentationPubSubType>(dds::kSegmentationTopic, dds::TopicClass::Chain)),
-      tracks_(air.make_reader<msg::TrackListPubSubType>(dds::kTracksTopic, dds::TopicClass::Chain)),
+      motion_(air.make_reader<msg::MotionEstimatePubSubType>(dds::kMotionTopic, resume ? dds::TopicClass::ChainResume : dds::TopicClass::Chain)),
+      segmentation_(air.make_reader<msg::SegmentationPubSubType>(dds::kSegmentationTopic,
+                                                                 resume ? dds::TopicClass::ChainResume : dds::TopicClass::Chain)),
+      tracks_(air.make_reader<msg::TrackListPubSubType>(dds::kTracksTopic, resume ? dds::TopicClass::ChainResume : dds::TopicClass::Chain)),
       writer_(link.make_writer<msg::FrameResultsPubSubType>(dds::kDownlinkResultsTopic, dds::TopicClass::Downlink)),
       health_(health) {
   if (mode_ == dds::DeliveryMode::Lossless) writer_->set_required_readers(required_readers);

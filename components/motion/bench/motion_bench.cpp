@@ -105,7 +105,7 @@ int main(int argc, char** argv) {
   std::string clif = std::string(UAVMOT_DATA_DIR) + "/clif2007/jpg";
   int frames = 60, width = 1920, height = 1080, threads = 1, features = 1000;
   double speed = 3.0, rotation = 0.05, noise = 1.0, zoom = 0.0005;
-  bool describe = false, only_uavmot = false;
+  bool describe = false, only_uavmot = false, state = false;
   std::string sim_preset, config;
   uint64_t seed = 42;
   app.add_option("--clif", clif, "folder with the CLIF 2007 jpg frames (texture)");
@@ -122,6 +122,8 @@ int main(int argc, char** argv) {
   app.add_option("--seed", seed, "simulator seed");
   app.add_option("--config", config, "YAML file with a motion: section for uavmot's options");
   app.add_flag("--only-uavmot", only_uavmot, "skip the no-Ceres variant and the baselines (for profiling)");
+  app.add_flag("--state", state,
+               "measure the saved state instead: its bytes, save_state() and restore_state() after every frame");
   app.add_flag("--describe", describe, "print a one-line description");
   CLI11_PARSE(app, argc, argv);
   if (describe) {
@@ -182,6 +184,35 @@ int main(int argc, char** argv) {
         return m.quality.valid;
       });
     };
+    if (state) {
+      // The saved state's size and what saving and restoring it costs (no file I/O: the node's
+      // synced write is measured by uavmot-motion itself, docs/motion.md "Saved state").
+      uavmot::motion::MotionEstimator estimator(options, scene);
+      std::vector<double> save_ms, restore_ms, bytes;
+      for (size_t k = 0; k < images.size(); ++k) {
+        uavmot::Frame f;
+        f.index = static_cast<int64_t>(k + 1);
+        f.image = images[k];
+        estimator.process(f);
+        const auto t0 = std::chrono::steady_clock::now();
+        const std::vector<uint8_t> saved = estimator.save_state();
+        const auto t1 = std::chrono::steady_clock::now();
+        uavmot::motion::MotionEstimator restored(options, scene);
+        const auto t2 = std::chrono::steady_clock::now();
+        restored.restore_state(saved);
+        const auto t3 = std::chrono::steady_clock::now();
+        if (k == 0) continue;  // the first frame has no features yet
+        save_ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+        restore_ms.push_back(std::chrono::duration<double, std::milli>(t3 - t2).count());
+        bytes.push_back(static_cast<double>(saved.size()));
+      }
+      std::printf("%s, %zu frames\n", input.description.c_str(), images.size());
+      std::printf("state bytes: median %.0f, max %.0f; save_state() median %.2f ms, p90 %.2f ms; "
+                  "restore_state() median %.2f ms, p90 %.2f ms\n",
+                  percentile(bytes, 0.5), percentile(bytes, 1.0), percentile(save_ms, 0.5), percentile(save_ms, 0.9),
+                  percentile(restore_ms, 0.5), percentile(restore_ms, 0.9));
+      return 0;
+    }
     results.push_back(run_uavmot("uavmot", true));
     if (only_uavmot) {
       const auto& r = results[0];

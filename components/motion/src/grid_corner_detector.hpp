@@ -3,6 +3,7 @@
 // with good coverage costs almost nothing and new texture entering the view is picked up.
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core/mat.hpp>
@@ -36,6 +37,19 @@ class GridCornerDetector {
   explicit GridCornerDetector(const MotionOptions& options) : options_(options) {}
   std::vector<cv::Point2f> detect(const cv::Mat& gray, const std::vector<cv::Point2f>& existing, bool continuous);
   void reset() { retry_at_.clear(); }
+
+  // What carries over from call to call (a saved estimator state).
+  struct State {
+    int64_t calls = 0;
+    cv::Size size;
+    std::vector<int64_t> retry_at;
+  };
+  State state() const { return {calls_, size_, retry_at_}; }
+  void restore(State state) {
+    calls_ = state.calls;
+    size_ = state.size;
+    retry_at_ = std::move(state.retry_at);
+  }
 
  private:
   const MotionOptions& options_;

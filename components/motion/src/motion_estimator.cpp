@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
+#include <deque>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -15,6 +18,8 @@
 #include "klt_tracker.hpp"
 #include "parallax_filter.hpp"
 #include "relative_velocity.hpp"
+#include "state_codec.hpp"
+#include "uavmot/core/checksum.hpp"
 
 namespace uavmot::motion {
 namespace {
@@ -68,6 +73,7 @@ class MotionEstimator::Impl {
   // `prepared`: the frame's grey image and pyramid built ahead (the pyramid is swapped in), or null.
   MotionEstimate process(const Frame& frame, PreparedFrame::Data* prepared);
   void reset() {
+    last_frame_index_ = 0;
     previous_ = Pyramid{};
     features_.clear();
     last_motion_ = Homography::eye();
@@ -76,6 +82,9 @@ class MotionEstimator::Impl {
     parallax_.reset();
   }
   const MotionOptions& options() const { return options_; }
+  std::vector<uint8_t> save_state() const;
+  void restore_state(const std::vector<uint8_t>& bytes);
+  int64_t last_frame_index() const { return last_frame_index_; }
 
  private:
   // Tracks the live features into `current`; returns whether the frame pair gave a valid
@@ -93,6 +102,7 @@ class MotionEstimator::Impl {
   uint64_t next_id_ = 1;
   Homography last_motion_ = Homography::eye();
   bool last_valid_ = false;
+  int64_t last_frame_index_ = 0;
   cv::Mat gray_;
 };
 
@@ -149,6 +159,7 @@ MotionEstimate MotionEstimator::Impl::process(const Frame& frame, PreparedFrame:
   detect_new_features(gray_, valid);
   std::swap(previous_, spare_);
   gray_.release();  // never keep a reference to the caller's buffer
+  last_frame_index_ = frame.index;
 
   out.features.reserve(features_.size());
   for (const auto& f : features_) out.features.push_back(to_output(f));
@@ -294,6 +305,277 @@ void MotionEstimator::Impl::detect_new_features(const cv::Mat& gray, bool contin
   }
 }
 
+
+// ---- Saved state (save_state / restore_state) --------------------------------------------------
+//
+// File layout, little-endian:
+//   magic "UMOTSTAT" (8 bytes) | u32 version | u64 payload bytes | u64 FNV-1a 64 of the payload | payload
+// Payload (version 1):
+//   u64 options fingerprint | i64 last frame index | u64 next id | bool last valid | 9 x f64 last homography
+//   detector: i64 calls | i32 width | i32 height | u64 n | n x i64 retry_at
+//   parallax: bool valid | 3 x f64 epipole | i32 side | i32 candidates | i32 support | f64 spread | f64 cap | i32 stable
+//   previous grey image: i32 cols | i32 rows | cols*rows bytes (0 x 0: none)
+//   u64 features, each: u64 id | f32 x | f32 y | u32 age | u64 n | n x (f64 x, f64 y) history |
+//                       f64 vx | f64 vy | f64 sigma | bool available | bool moving | i32 streak
+namespace {
+
+constexpr char kStateMagic[8] = {'U', 'M', 'O', 'T', 'S', 'T', 'A', 'T'};
+constexpr uint32_t kStateVersion = 1;
+constexpr size_t kStateHeaderBytes = 8 + 4 + 8 + 8;
+constexpr int kMaxStateImageSide = 1 << 15;
+
+void put_string(state_codec::Writer& w, const std::string& s) {
+  w.put(static_cast<uint64_t>(s.size()));
+  w.put_bytes(s.data(), s.size());
+}
+
+// Every option, as the estimator uses it (min_moving_speed_px includes the scene's ground speed):
+// a state made under other options would not continue the same way.
+uint64_t options_fingerprint(const MotionOptions& o) {
+  state_codec::Writer w;
+  w.put(o.max_features);
+  w.put(o.cell_size_px);
+  w.put(o.features_per_cell);
+  w.put(o.min_distance_px);
+  w.put(o.corner_block_size);
+  w.put(o.min_corner_response);
+  w.put(o.border_px);
+  w.put(o.empty_cell_retry_frames);
+  w.put(o.lk_window_px);
+  w.put(o.pyramid_levels);
+  w.put(o.lk_max_iterations);
+  w.put(o.lk_epsilon_px);
+  w.put(o.backward_levels);
+  w.put(o.max_forward_backward_px);
+  w.put(o.predict_with_previous_homography);
+  w.put(o.recover_large_motion);
+  w.put(o.max_step_error_px);
+  put_string(w, o.robust_method);
+  w.put(o.ransac_threshold_px);
+  w.put(o.ransac_max_iterations);
+  w.put(o.ransac_confidence);
+  w.put(o.min_inliers);
+  w.put(o.min_inlier_ratio);
+  w.put(o.min_tracked_ratio);
+  w.put(o.max_motion_fraction);
+  w.put(o.max_scale_change);
+  w.put(o.refine);
+  put_string(w, o.refine_loss);
+  w.put(o.refine_loss_scale_px);
+  w.put(o.refine_max_iterations);
+  w.put(o.refine_max_points);
+  w.put(o.refine_exclude_moving);
+  w.put(o.background_flow_degree);
+  w.put(o.history_frames);
+  w.put(o.min_track_frames);
+  w.put(o.position_sigma_px);
+  w.put(o.prior_weight);
+  w.put(o.moving_sigma_factor);
+  w.put(o.min_moving_speed_px);
+  w.put(o.min_moving_speed_mps);
+  w.put(o.scene_noise_factor);
+  w.put(o.scene_noise_max_px);
+  w.put(o.confirm_frames);
+  w.put(o.release_ratio);
+  w.put(o.parallax_rejection);
+  w.put(o.parallax_both_sides);
+  w.put(o.parallax_min_support);
+  w.put(o.parallax_min_support_fraction);
+  w.put(o.parallax_min_share);
+  w.put(o.parallax_min_spread);
+  w.put(o.parallax_stable_frames);
+  w.put(o.parallax_stable_angle_deg);
+  w.put(o.parallax_across_sigma);
+  w.put(o.parallax_across_floor_px);
+  w.put(o.parallax_cap_factor);
+  w.put(o.parallax_ransac_iterations);
+  return fnv1a64(w.bytes().data(), w.bytes().size());
+}
+
+}  // namespace
+
+std::vector<uint8_t> MotionEstimator::Impl::save_state() const {
+  state_codec::Writer w;
+  size_t feature_bytes = 0;
+  for (const auto& f : features_) feature_bytes += 58 + 16 * f.history.positions().size();
+  const size_t image_bytes = previous_.empty() ? 0 : previous_.size.area();
+  w.reserve(256 + 8 * detector_.state().retry_at.size() + image_bytes + feature_bytes);
+  w.put(options_fingerprint(options_));
+  w.put(last_frame_index_);
+  w.put(next_id_);
+  w.put(last_valid_);
+  for (double v : last_motion_.val) w.put(v);
+  const GridCornerDetector::State detector = detector_.state();
+  w.put(detector.calls);
+  w.put(static_cast<int32_t>(detector.size.width));
+  w.put(static_cast<int32_t>(detector.size.height));
+  w.put(static_cast<uint64_t>(detector.retry_at.size()));
+  for (int64_t v : detector.retry_at) w.put(v);
+  const ParallaxModel& m = parallax_.model();
+  w.put(m.valid);
+  for (double v : m.epipole.val) w.put(v);
+  w.put(static_cast<int32_t>(m.side));
+  w.put(static_cast<int32_t>(m.candidates));
+  w.put(static_cast<int32_t>(m.support));
+  w.put(m.spread_px);
+  w.put(m.cap_px);
+  w.put(static_cast<int32_t>(m.stable_frames));
+  // The previous pyramid's level 0 is the grey image itself (a copy, in a bordered buffer); the
+  // pyramid is a function of it and the options, so the image is all that needs saving.
+  const cv::Mat previous_gray = previous_.empty() ? cv::Mat() : previous_.levels[0];
+  w.put(static_cast<int32_t>(previous_gray.cols));
+  w.put(static_cast<int32_t>(previous_gray.rows));
+  for (int y = 0; y < previous_gray.rows; ++y) w.put_bytes(previous_gray.ptr<uint8_t>(y), static_cast<size_t>(previous_gray.cols));
+  w.put(static_cast<uint64_t>(features_.size()));
+  for (const auto& f : features_) {
+    w.put(f.id);
+    w.put(f.position.x);
+    w.put(f.position.y);
+    w.put(f.age);
+    w.put(static_cast<uint64_t>(f.history.positions().size()));
+    for (const auto& p : f.history.positions()) {
+      w.put(p.x);
+      w.put(p.y);
+    }
+    w.put(f.velocity.velocity[0]);
+    w.put(f.velocity.velocity[1]);
+    w.put(f.velocity.sigma);
+    w.put(f.velocity.available);
+    w.put(f.classifier.moving());
+    w.put(static_cast<int32_t>(f.classifier.streak()));
+  }
+  const std::vector<uint8_t>& payload = w.bytes();
+  state_codec::Writer out;
+  out.reserve(kStateHeaderBytes + payload.size());
+  out.put_bytes(kStateMagic, sizeof kStateMagic);
+  out.put(kStateVersion);
+  out.put(static_cast<uint64_t>(payload.size()));
+  out.put(fnv1a64(payload.data(), payload.size()));
+  out.put_bytes(payload.data(), payload.size());
+  return std::move(out.bytes());
+}
+
+void MotionEstimator::Impl::restore_state(const std::vector<uint8_t>& bytes) {
+  const std::string what = "motion estimator state";
+  state_codec::Reader header(bytes.data(), bytes.size(), what);
+  if (bytes.size() < sizeof kStateMagic || std::memcmp(bytes.data(), kStateMagic, sizeof kStateMagic) != 0) {
+    header.fail("not a motion state (no 'UMOTSTAT' at the start)");
+  }
+  header.get_bytes(sizeof kStateMagic);
+  const auto version = header.get<uint32_t>();
+  if (version != kStateVersion) {
+    header.fail("format version " + std::to_string(version) + ", this build reads version " + std::to_string(kStateVersion));
+  }
+  const auto payload_size = header.get<uint64_t>();
+  const auto checksum = header.get<uint64_t>();
+  if (payload_size != header.remaining()) {
+    header.fail("truncated or padded: " + std::to_string(header.remaining()) + " payload bytes, the header says " +
+                std::to_string(payload_size));
+  }
+  const uint8_t* payload = bytes.data() + kStateHeaderBytes;
+  if (fnv1a64(payload, payload_size) != checksum) header.fail("corrupt (checksum mismatch)");
+
+  state_codec::Reader r(payload, payload_size, what);
+  if (r.get<uint64_t>() != options_fingerprint(options_)) {
+    r.fail("saved with other motion options or scene (gsd, fps) than this estimator's");
+  }
+  const auto frame_index = r.get<int64_t>();
+  const auto next_id = r.get<uint64_t>();
+  const bool last_valid = r.get<bool>();
+  Homography last_motion;
+  for (double& v : last_motion.val) v = r.get<double>();
+  if (!is_finite(last_motion)) r.fail("the last homography is not finite");
+
+  GridCornerDetector::State detector;
+  detector.calls = r.get<int64_t>();
+  detector.size.width = r.get<int32_t>();
+  detector.size.height = r.get<int32_t>();
+  const uint64_t cells = r.get_count(sizeof(int64_t));
+  detector.retry_at.resize(cells);
+  for (auto& v : detector.retry_at) v = r.get<int64_t>();
+  if (detector.calls < 0 || detector.size.width < 0 || detector.size.height < 0) r.fail("the detector state is negative");
+
+  ParallaxModel model;
+  model.valid = r.get<bool>();
+  for (double& v : model.epipole.val) v = r.get<double>();
+  model.side = r.get<int32_t>();
+  model.candidates = r.get<int32_t>();
+  model.support = r.get<int32_t>();
+  model.spread_px = r.get<double>();
+  model.cap_px = r.get<double>();
+  model.stable_frames = r.get<int32_t>();
+  if (!std::isfinite(model.epipole[0]) || !std::isfinite(model.epipole[1]) || !std::isfinite(model.epipole[2]) ||
+      !std::isfinite(model.spread_px) || !std::isfinite(model.cap_px) || model.side < -1 || model.side > 1) {
+    r.fail("the parallax model is not finite or has an unknown side");
+  }
+
+  const auto cols = r.get<int32_t>();
+  const auto rows = r.get<int32_t>();
+  if (cols < 0 || rows < 0 || cols > kMaxStateImageSide || rows > kMaxStateImageSide || (cols == 0) != (rows == 0)) {
+    r.fail("previous image of " + std::to_string(cols) + "x" + std::to_string(rows) + " px");
+  }
+  const int min_side = 2 * options_.border_px + options_.lk_window_px;
+  if (cols > 0 && (cols < min_side || rows < min_side)) r.fail("previous image smaller than " + std::to_string(min_side) + " px");
+  cv::Mat gray;
+  if (cols > 0) {
+    const uint8_t* pixels = r.get_bytes(static_cast<size_t>(cols) * static_cast<size_t>(rows));
+    gray = cv::Mat(rows, cols, CV_8UC1, const_cast<uint8_t*>(pixels)).clone();
+  }
+
+  // A feature: at least its fixed fields (8 + 4 + 4 + 4 + 8 + 8 + 8 + 8 + 1 + 1 + 4 bytes).
+  constexpr size_t kMinFeatureBytes = 58;
+  const uint64_t count = r.get_count(kMinFeatureBytes);
+  std::vector<LiveFeature> features(count);
+  uint64_t last_id = 0;
+  for (auto& f : features) {
+    f.id = r.get<uint64_t>();
+    if (f.id <= last_id || f.id >= next_id) r.fail("feature ids out of order or not below the next id");
+    last_id = f.id;
+    f.position.x = r.get<float>();
+    f.position.y = r.get<float>();
+    f.age = r.get<uint32_t>();
+    const uint64_t n = r.get_count(16);
+    if (n < 1 || n > static_cast<uint64_t>(std::max(1, options_.history_frames))) {
+      r.fail("feature " + std::to_string(f.id) + " has " + std::to_string(n) + " history positions");
+    }
+    std::deque<cv::Point2d> history;
+    for (uint64_t k = 0; k < n; ++k) {
+      const double x = r.get<double>();
+      const double y = r.get<double>();
+      if (!std::isfinite(x) || !std::isfinite(y)) r.fail("feature " + std::to_string(f.id) + " has a non-finite history position");
+      history.emplace_back(x, y);
+    }
+    f.history.restore(std::move(history));
+    f.velocity.velocity[0] = r.get<double>();
+    f.velocity.velocity[1] = r.get<double>();
+    f.velocity.sigma = r.get<double>();
+    f.velocity.available = r.get<bool>();
+    const bool moving = r.get<bool>();
+    const int streak = r.get<int32_t>();
+    f.classifier.restore(moving, streak);
+    if (!std::isfinite(f.position.x) || !std::isfinite(f.position.y) || f.age < 1 ||
+        f.age > static_cast<uint32_t>(std::numeric_limits<int>::max())) {
+      r.fail("feature " + std::to_string(f.id) + " has a non-finite position or an impossible age");
+    }
+    if (!std::isfinite(f.velocity.velocity[0]) || !std::isfinite(f.velocity.velocity[1]) ||
+        !(f.velocity.sigma >= 0.0) || !std::isfinite(f.velocity.sigma) || streak < 0) {
+      r.fail("feature " + std::to_string(f.id) + " has a non-finite velocity or a negative streak");
+    }
+  }
+  if (r.remaining() != 0) r.fail(std::to_string(r.remaining()) + " bytes left over after the features");
+
+  // Everything checked: only now does the estimator change.
+  last_frame_index_ = frame_index;
+  next_id_ = next_id;
+  last_valid_ = last_valid;
+  last_motion_ = last_motion;
+  detector_.restore(std::move(detector));
+  parallax_.restore(model);
+  previous_ = Pyramid{};
+  if (!gray.empty()) build_pyramid(gray, options_, previous_);
+  features_ = std::move(features);
+}
+
 MotionEstimator::MotionEstimator(MotionOptions options, SceneInfo scene)
     : impl_(std::make_unique<Impl>(std::move(options), scene)) {}
 MotionEstimator::~MotionEstimator() = default;
@@ -315,6 +597,9 @@ MotionEstimate MotionEstimator::process(const Frame& frame, PreparedFrame prepar
   return impl_->process(frame, prepared.data_.get());
 }
 void MotionEstimator::reset() { impl_->reset(); }
+std::vector<uint8_t> MotionEstimator::save_state() const { return impl_->save_state(); }
+void MotionEstimator::restore_state(const std::vector<uint8_t>& bytes) { impl_->restore_state(bytes); }
+int64_t MotionEstimator::last_frame_index() const { return impl_->last_frame_index(); }
 const MotionOptions& MotionEstimator::options() const { return impl_->options(); }
 
 }  // namespace uavmot::motion

@@ -60,6 +60,8 @@ class ParallaxFilter {
 
   const ParallaxModel& model() const { return model_; }
   void reset() { model_ = ParallaxModel{}; }
+  // The model is all a fit carries to the next frame's (a saved estimator state).
+  void restore(const ParallaxModel& model) { model_ = model; }
 
  private:
   const MotionOptions& options_;

@@ -8,6 +8,7 @@
 // tracking noise, gives the 1-sigma noise of that velocity.
 
 #include <deque>
+#include <utility>
 #include <vector>
 
 #include <opencv2/core/matx.hpp>
@@ -32,6 +33,8 @@ class FeatureHistory {
   void push(const cv::Point2f& position, int capacity);
   int size() const { return static_cast<int>(positions_.size()); }
   const std::deque<cv::Point2d>& positions() const { return positions_; }
+  // Replaces the positions (restoring a saved estimator state).
+  void restore(std::deque<cv::Point2d> positions) { positions_ = std::move(positions); }
 
  private:
   std::deque<cv::Point2d> positions_;  // oldest first, the last is the current position
@@ -63,6 +66,12 @@ class MotionClassifier {
   // `floor_px`: a lower bound on the threshold from the whole frame's noise (scene_noise_floor()).
   bool update(const VelocityEstimate& estimate, int track_frames, const MotionOptions& options, double floor_px = 0.0);
   bool moving() const { return moving_; }
+  int streak() const { return streak_; }
+  // Restores a saved state (moving(), streak()).
+  void restore(bool moving, int streak) {
+    moving_ = moving;
+    streak_ = streak;
+  }
 
  private:
   bool moving_ = false;

@@ -25,6 +25,8 @@ class SingleInputNode {
   using Output = typename PubOut::type;
   // Returns the sample to publish, or nullopt to publish nothing for this input.
   using Process = std::function<std::optional<Output>(const std::string& stream, const In&)>;
+  // Called once a frame's output is published (e.g. to save state that includes that frame).
+  using Published = std::function<void(const std::string& stream, int64_t index)>;
 
   struct Spec {
     std::string component;
@@ -34,14 +36,15 @@ class SingleInputNode {
     int required_readers = 0;  // lossless: readers of the output to wait for
   };
 
-  SingleInputNode(Participant& participant, Spec spec, Process process)
+  SingleInputNode(Participant& participant, Spec spec, Process process, Published published = {})
       : spec_(std::move(spec)),
         mode_(participant.options().mode),
         reader_(participant.make_reader<PubIn>(spec_.input, spec_.input_class)),
         writer_(participant.make_writer<PubOut>(spec_.output, TopicClass::Chain)),
         health_(participant, spec_.component, "*"),
         ends_(spec_.streams),
-        process_(std::move(process)) {
+        process_(std::move(process)),
+        published_(std::move(published)) {
     if (mode_ == DeliveryMode::Lossless) writer_->set_required_readers(spec_.required_readers);
     health_.watch(*reader_);
     health_.watch(*writer_);
@@ -106,6 +109,7 @@ class SingleInputNode {
     if (!out) return;
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
     if (!publish(*writer_, *out, mode_)) health_.dropped();
+    if (published_) published_(stream, index);
     health_.frame_out(index, ms, latency_ms_since(sample.capture_time_ns()));
     health_.set_bytes_out(writer_->bytes_sent());
   }
@@ -118,6 +122,7 @@ class SingleInputNode {
   StreamEnds ends_;
   RejectLog rejects_;
   Process process_;
+  Published published_;
   std::map<std::string, int64_t> last_index_;
   typename PubIn::type sample_;  // reused: a frame sample keeps its pixel buffer between takes
 };

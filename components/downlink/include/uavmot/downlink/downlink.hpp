@@ -20,6 +20,10 @@ struct DownlinkOptions {
   std::string air_transport = "shm";  // never on the link
   std::string stream_id = "*";        // given to health reports of nodes serving every stream
   int streams = 1;
+  // A respawned downlink: its readers also get the chain writers' recent history (transient-local,
+  // the last 64 samples each), so what reached its killed predecessor but not the link comes again
+  // (the ground sink skips the frames it has).
+  bool resume = false;
   PreviewOptions preview;
 };
 

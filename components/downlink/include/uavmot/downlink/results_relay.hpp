@@ -23,7 +23,9 @@ namespace uavmot::downlink {
 
 class ResultsRelay {
  public:
-  ResultsRelay(dds::Participant& air, dds::Participant& link, int required_readers, dds::HealthReporter& health);
+  // `resume`: read the chain topics with their writers' recent history (dds::TopicClass::ChainResume).
+  ResultsRelay(dds::Participant& air, dds::Participant& link, int required_readers, dds::HealthReporter& health,
+               bool resume = false);
 
   // Takes what waits on the three inputs and publishes every frame that is complete. True if any was taken.
   bool pump();

@@ -8,7 +8,9 @@
 //
 // Deterministic: the same frames give bit-identical estimates.
 
+#include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "uavmot/core/chain_types.hpp"
 #include "uavmot/core/scene_info.hpp"
@@ -53,6 +55,20 @@ class MotionEstimator {
 
   // Forgets all features and the previous frame (e.g. when a stream restarts).
   void reset();
+
+  // Everything the estimator carries from one frame to the next, as bytes: the previous frame's grey
+  // image (its pyramid is rebuilt from it, bit for bit), every live feature with its id, age,
+  // position history, velocity and moving/static hysteresis, the next feature id, the last
+  // homography, the detector's empty-cell back-off and the parallax filter's epipole. Versioned,
+  // checksummed and tied to the options (and scene) it was made with. An estimator built with the
+  // same options and scene that restore_state()s it and continues gives, frame for frame, the same
+  // bytes as the estimator that saved it (docs/motion.md, "Saved state").
+  std::vector<uint8_t> save_state() const;
+  // Throws uavmot::InputError, leaving the estimator unchanged, for bytes that are not such a
+  // state: truncated, corrupt (checksum), another format version, other options, or inconsistent.
+  void restore_state(const std::vector<uint8_t>& bytes);
+  // The index of the last frame process()ed (or of the restored state's), 0 before any.
+  int64_t last_frame_index() const;
 
   const MotionOptions& options() const;
 
