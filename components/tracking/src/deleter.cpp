@@ -9,7 +9,7 @@
 namespace uavmot::tracking {
 
 void record_frame(TrackRecord& track, bool region_hit, bool supported, const TrackerOptions& options,
-                  bool may_bridge_gap, double confirm_min_speed_px) {
+                  bool may_bridge_gap, double confirm_min_speed_px, bool may_confirm) {
   ++track.age;
   const uint32_t window_mask = options.confirm_window >= 32 ? 0xffffffffu : ((1u << options.confirm_window) - 1u);
   track.hit_history = ((track.hit_history << 1) | (region_hit ? 1u : 0u)) & window_mask;
@@ -20,7 +20,9 @@ void record_frame(TrackRecord& track, bool region_hit, bool supported, const Tra
     const bool by_features = options.confirm_hits_with_features > 0 && hits >= options.confirm_hits_with_features &&
                              static_cast<int>(track.features.size()) >= options.confirm_min_features;
     const bool goes_somewhere = std::hypot(track.mean[kVx], track.mean[kVy]) >= confirm_min_speed_px;
-    if ((hits >= options.confirm_hits || by_features) && goes_somewhere) track.state = TrackState::Confirmed;
+    // At the border neither region hits nor linked features prove motion (see
+    // TrackerOptions::confirm_border_margin_px): the track waits until it is inside.
+    if ((hits >= options.confirm_hits || by_features) && goes_somewhere && may_confirm) track.state = TrackState::Confirmed;
     return;
   }
   const bool bridged = may_bridge_gap && static_cast<int>(track.frames_since_update) <= options.gap_frames &&
@@ -47,6 +49,14 @@ bool wholly_inside_view(const OrientedBox& box, const cv::Size& image) {
   if (!image_size_known(image)) return true;
   for (const auto& c : box_corners(box)) {
     if (!inside_image(c.x, c.y, image)) return false;
+  }
+  return true;
+}
+
+bool clear_of_border(const OrientedBox& box, const cv::Size& image, double margin_px) {
+  if (!image_size_known(image)) return true;
+  for (const auto& c : box_corners(box)) {
+    if (!inside_image(c.x - margin_px, c.y - margin_px, image) || !inside_image(c.x + margin_px, c.y + margin_px, image)) return false;
   }
   return true;
 }

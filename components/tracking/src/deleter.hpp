@@ -22,13 +22,19 @@ bool inside_view(const OrientedBox& box, const cv::Size& image);
 // True unless the image size is known and a corner of the box lies outside the image.
 bool wholly_inside_view(const OrientedBox& box, const cv::Size& image);
 
+// True unless the image size is known and a corner of the box lies within `margin_px` of the
+// image's edge or outside it.
+bool clear_of_border(const OrientedBox& box, const cv::Size& image, double margin_px);
+
 // Records one frame in the track's history: a region hit, support by features only, or nothing.
 // An established track that misses a frame stays confirmed for `gap_frames` when `may_bridge_gap`
 // (the caller passes false at the image border, where a vehicle misses its regions because it leaves).
 // A tentative track is confirmed only when its estimated speed is at least `confirm_min_speed_px`
-// (px/frame; the tracker converts TrackerOptions::confirm_min_speed_mps with the scene's GSD and fps).
+// (px/frame; the tracker converts TrackerOptions::confirm_min_speed_mps with the scene's GSD and fps)
+// and only when `may_confirm` (the caller passes false while the box touches the image border,
+// where a static object that the camera uncovers looks like motion).
 void record_frame(TrackRecord& track, bool region_hit, bool supported, const TrackerOptions& options,
-                  bool may_bridge_gap = true, double confirm_min_speed_px = 0.0);
+                  bool may_bridge_gap = true, double confirm_min_speed_px = 0.0, bool may_confirm = true);
 
 // What happens to a live track after record_frame().
 // `in_view`: see inside_view(); a track that left the view goes dormant (confirmed) or is deleted.

@@ -109,7 +109,7 @@ class PaperLifecycle final : public Deleter {
   }
   Fate judge(TrackInFrame& track, const cv::Size& image) const override {
     record_frame(track.record, track.region_hit, track.supported, options_, wholly_inside_view(track.posterior, image),
-                 confirm_min_speed_px_);
+                 confirm_min_speed_px_, clear_of_border(track.posterior, image, options_.confirm_border_margin_px));
     return decide_fate(track.record, inside_view(track.posterior, image), options_);
   }
 

@@ -40,6 +40,7 @@ struct IntField {
 const std::vector<DoubleField>& double_fields() {
   static const std::vector<DoubleField> fields = {
       {"confirm_min_speed_mps", &TrackerOptions::confirm_min_speed_mps, 0.0, 100.0},
+      {"confirm_border_margin_px", &TrackerOptions::confirm_border_margin_px, 0.0, 1000.0},
       {"process_accel_sigma_px", &TrackerOptions::process_accel_sigma_px, 1e-6, 100.0},
       {"process_size_sigma_px", &TrackerOptions::process_size_sigma_px, 1e-6, 100.0},
       {"process_angle_sigma_deg", &TrackerOptions::process_angle_sigma_deg, 1e-6, 90.0},

@@ -55,7 +55,7 @@ struct MotionOptions {
   double prior_weight = 4.0;        // degrees of freedom the prior noise counts for
   double moving_sigma_factor = 4.0;    // moving when speed > factor * velocity_sigma ...
   double min_moving_speed_px = 0.15;   // ... and > this (px/frame)
-  double min_moving_speed_mps = 0.0;   // ... and > this ground speed (m/s, via SceneInfo); 0 = unused
+  double min_moving_speed_mps = 1.0;   // ... and > this ground speed (m/s, via SceneInfo); 0 = unused
   double scene_noise_factor = 6.0;     // ... and > this times the frame's robust velocity noise (0 = unused)
   double scene_noise_max_px = 0.25;    // ... which counts up to this (px/frame)
   int confirm_frames = 2;           // consecutive significant frames to become moving (and to stop)

@@ -106,6 +106,12 @@ struct TrackerOptions {
   // parked cars whose features jitter make regions too, but they do not go anywhere. Once confirmed
   // a track may stop (stop-and-go). 0 disables.
   double confirm_min_speed_mps = 1.0;
+  // A tentative track does not confirm while its box comes within this distance (px) of the image
+  // border. There the camera's motion uncovers or hides part of a static object, so its region
+  // grows or shrinks and the box centre moves; its features at the uncovered edge move too: the
+  // look of motion (real clips: most false tracks were there). A vehicle entering the view
+  // confirms once it is in. 0 = only a box reaching outside the image waits.
+  double confirm_border_margin_px = 1.0;
   int tentative_max_misses = 1;             // a tentative track missing more frames in a row is deleted
   int max_coast_frames = 5;                 // a confirmed track coasts this many frames on prediction
   // An established track (at least gap_min_hits region hits) that misses up to this many frames in a

@@ -1,0 +1,102 @@
+// The whole chain on the real aerial clips shipped in data/ (no ground truth). Almost everything in
+// them is static: buildings, trees, sheds, containers, parked vehicles. Issue 17: at most 0.5
+// confirmed boxes per frame on such things (before the plane + parallax step, the ground-speed
+// floor and the border rule: 167 per frame on CLIF, 28 on aphill_short). Every confirmed box is
+// counted as false here, so the bound is stricter than the issue's: the one moving car seen by a
+// person in these clips (aphill 1 fps, frames 150-180, docs/benchmarks/real_video.md) has boxes too.
+// The same figures come from `tools/real_video_check.sh`.
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <algorithm>
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "child_process.hpp"
+
+namespace uavmot {
+namespace {
+
+using testing::binary;
+using testing::ChildProcess;
+using testing::fresh_dir;
+using testing::read_file;
+
+struct TrackBox {
+  int frame = 0;
+  std::string state;
+  double cx = 0, cy = 0, speed_mps = 0;
+};
+
+// The rows of tracks_obb.csv (frame,id,state,cx,cy,width,length,angle_deg,vx,vy,cx_m,cy_m,width_m,
+// length_m,speed_mps,...).
+std::vector<TrackBox> track_boxes(const std::string& tracks_obb) {
+  std::vector<TrackBox> out;
+  std::istringstream in(read_file(tracks_obb));
+  std::string line;
+  std::getline(in, line);  // header
+  while (std::getline(in, line)) {
+    std::vector<std::string> f;
+    std::istringstream fields(line);
+    for (std::string v; std::getline(fields, v, ',');) f.push_back(v);
+    if (f.size() < 15) continue;
+    out.push_back({std::stoi(f[0]), f[2], std::stod(f[3]), std::stod(f[4]), std::stod(f[14])});
+  }
+  return out;
+}
+
+struct ClipRun {
+  int frames = 0;
+  std::vector<TrackBox> boxes;
+  double confirmed_per_frame() const {
+    const auto n = std::count_if(boxes.begin(), boxes.end(), [](const TrackBox& b) { return b.state == "confirmed"; });
+    return static_cast<double>(n) / std::max(1, frames);
+  }
+};
+
+ClipRun process(const std::string& clip, const std::string& out) {
+  ChildProcess p({binary("uavmot"), "process", std::string(UAVMOT_DATA_DIR) + "/" + clip, "--out", out, "--quiet"}, out + ".log");
+  const auto code = p.wait(std::chrono::minutes(10));
+  EXPECT_TRUE(code.has_value() && *code == 0) << clip << ":\n" << p.log();
+  ClipRun run;
+  run.frames = nlohmann::json::parse(read_file(out + "/summary.json")).at("frames").get<int>();
+  run.boxes = track_boxes(out + "/tracks_obb.csv");
+  return run;
+}
+
+TEST(RealVideoScenario, StaticStructureGivesAtMostHalfABoxPerFrame) {
+  const std::string dir = fresh_dir("real_video_scenario");
+  const std::vector<std::pair<std::string, int>> clips = {
+      {"aphill/aphill_short.ts", 48}, {"aphill/aphill_240_1fps_crf32.mp4", 310}, {"clif2007/jpg", 250}};
+  for (const auto& [clip, frames] : clips) {
+    const ClipRun run = process(clip, dir + "/clip" + std::to_string(frames));
+    std::printf("%s: %d frames, %.2f confirmed boxes per frame\n", clip.c_str(), run.frames, run.confirmed_per_frame());
+    EXPECT_EQ(run.frames, frames) << clip;
+    EXPECT_LE(run.confirmed_per_frame(), 0.5) << clip;
+  }
+}
+
+TEST(RealVideoScenario, TheCarDrivingPastTheShedsIsTracked) {
+  // aphill 1 fps, frames 170-182: a dark car drives down the yard between the sheds at about
+  // 4 m/s (looked at frame by frame; it starts near (135, 95) and leaves near (150, 160)). At one
+  // frame a second it moves ~12 px a frame and its tracks mostly coast between region hits.
+  const std::string dir = fresh_dir("real_video_scenario_mover");
+  const ClipRun run = process("aphill/aphill_240_1fps_crf32.mp4", dir + "/aphill_1fps");
+  int confirmed = 0, live = 0;
+  for (const auto& b : run.boxes) {
+    if (b.frame < 170 || b.frame > 182 || b.cx < 100 || b.cx > 210 || b.cy < 60 || b.cy > 180 || b.speed_mps < 2.0) continue;
+    confirmed += b.state == "confirmed";
+    live += b.state == "confirmed" || b.state == "coasting";
+  }
+  EXPECT_GE(confirmed, 1) << "confirmed boxes moving with the car in frames 170-182";
+  EXPECT_GE(live, 8) << "confirmed or coasting boxes moving with the car in frames 170-182";
+}
+
+}  // namespace
+}  // namespace uavmot
