@@ -13,6 +13,7 @@
 #include <filesystem>
 #include <regex>
 #include <set>
+#include <sstream>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -79,10 +80,18 @@ TEST(TrackerResume, NewLaunchContinuesFromTheSavedStateWithTheSameTrackIds) {
   const auto after = read_tracks(root + "/second/tracks.txt");
   ASSERT_FALSE(after.empty()) << second.log();
   EXPECT_EQ(after.begin()->first, saved + 1) << "the second launch's first frame with tracks";
-  // Ids go on from the restored state: an id below next_id is one the first launch gave out.
+  // Ids go on from the restored state: an id below next_id is one the first launch gave out, to a
+  // confirmed track or to a tentative one that the restored state carries (tracks_obb.csv has every
+  // state; tracks.txt only the confirmed).
   std::set<int> first_ids;
-  for (const auto& [frame, tracks] : read_tracks(root + "/first/tracks.txt")) {
-    for (const auto& [id, box] : tracks) first_ids.insert(id);
+  {
+    std::istringstream rows(testing::read_file(root + "/first/tracks_obb.csv"));
+    std::string row;
+    std::getline(rows, row);  // header
+    while (std::getline(rows, row)) {
+      const auto comma = row.find(',');
+      if (comma != std::string::npos) first_ids.insert(std::stoi(row.substr(comma + 1)));
+    }
   }
   for (const auto& [frame, tracks] : after) {
     for (const auto& [id, box] : tracks) {
