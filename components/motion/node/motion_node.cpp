@@ -15,6 +15,8 @@
 #include "motion_state_file.hpp"
 #include "uavmot/config/chain_config.hpp"
 #include "uavmot/core/app.hpp"
+#include "uavmot/core/durable_file.hpp"
+#include "uavmot/core/error.hpp"
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/dds/single_input_node.hpp"
 #include "uavmot/motion/motion_estimator.hpp"
@@ -36,7 +38,7 @@ struct StreamMotion {
   int64_t saved_frame = 0;     // the last frame whose state is in the state file
   uint64_t saves = 0;
   double serialise_ms = 0.0;   // total time of save_state()
-  double write_ms = 0.0;       // total time of the synced write (save_state_file)
+  double write_ms = 0.0;       // total time of the synced write (write_file_durably)
   size_t state_bytes = 0;      // of the last save
 };
 
@@ -113,8 +115,10 @@ int motion_main(int argc, char** argv) {
                     const auto t0 = std::chrono::steady_clock::now();
                     const std::vector<uint8_t> bytes = s.estimator.save_state();
                     const auto t1 = std::chrono::steady_clock::now();
-                    if (!motion::save_state_file(bytes, state_file(stream))) {
-                      spdlog::warn("cannot write motion state '{}'", state_file(stream));
+                    try {
+                      write_file_durably(state_file(stream), bytes);
+                    } catch (const OutputError& e) {
+                      spdlog::warn("cannot write motion state: {}", e.what());
                       return;
                     }
                     s.serialise_ms += std::chrono::duration<double, std::milli>(t1 - t0).count();

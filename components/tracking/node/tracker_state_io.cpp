@@ -1,16 +1,13 @@
 #include "tracker_state_io.hpp"
 
-#include <fcntl.h>
-#include <unistd.h>
-
 #include <cmath>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
 #include <vector>
 
 #include "tracker_statePubSubTypes.h"
+#include "uavmot/core/durable_file.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/dds/cdr_sample.hpp"
 
@@ -107,35 +104,15 @@ std::optional<TrackerState> from_msg(const msg::TrackerSnapshot& m, std::string&
   return state;
 }
 
-bool save_snapshot(const msg::TrackerSnapshot& snapshot, const std::string& path) {
+void save_snapshot(const msg::TrackerSnapshot& snapshot, const std::string& path) {
   auto copy = snapshot;  // the generated serializer takes a mutable sample
   std::vector<uint8_t> bytes;
   try {
     bytes = dds::to_cdr<msg::TrackerSnapshotPubSubType>(copy);
-  } catch (const InputError&) {
-    return false;
+  } catch (const InputError& e) {
+    throw OutputError("cannot encode the tracker state for '" + path + "': " + e.what());
   }
-  // Synced before and after the rename, so a host that loses power keeps either the previous
-  // state or this one, never an empty or partial file (the state outlives the host: docs/launch.md).
-  const std::string tmp = path + ".tmp";
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
-  if (fd < 0) return false;
-  bool ok = true;
-  for (size_t done = 0; ok && done < bytes.size();) {
-    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
-    ok = n > 0;
-    if (ok) done += static_cast<size_t>(n);
-  }
-  ok = ::fdatasync(fd) == 0 && ok;
-  ok = ::close(fd) == 0 && ok;
-  if (!ok || std::rename(tmp.c_str(), path.c_str()) != 0) return false;
-  const std::string dir = std::filesystem::path(path).parent_path().string();
-  const int dir_fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
-  if (dir_fd >= 0) {
-    ::fsync(dir_fd);
-    ::close(dir_fd);
-  }
-  return true;
+  write_file_durably(path, bytes);
 }
 
 std::optional<msg::TrackerSnapshot> load_snapshot(const std::string& path) {

@@ -16,9 +16,9 @@ msg::TrackerSnapshot to_msg(const TrackerState& state, const std::string& stream
 // nullopt (with `why`) for a snapshot that is malformed; Tracker::restore checks consistency.
 std::optional<TrackerState> from_msg(const msg::TrackerSnapshot& snapshot, std::string& why);
 
-// Writes the snapshot to `path` atomically and durably (temporary file, fdatasync, rename, fsync of
-// the folder). Returns false on I/O errors.
-bool save_snapshot(const msg::TrackerSnapshot& snapshot, const std::string& path);
+// Writes the snapshot to `path` atomically and durably (uavmot::write_file_durably). Throws
+// OutputError naming the file and the reason.
+void save_snapshot(const msg::TrackerSnapshot& snapshot, const std::string& path);
 // nullopt when the file does not exist; throws InputError when it exists but cannot be decoded.
 std::optional<msg::TrackerSnapshot> load_snapshot(const std::string& path);
 

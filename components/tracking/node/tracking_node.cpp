@@ -14,6 +14,7 @@
 #include "tracksPubSubTypes.h"
 #include "uavmot/config/chain_config.hpp"
 #include "uavmot/core/app.hpp"
+#include "uavmot/core/error.hpp"
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/dds/paired_node.hpp"
 #include "uavmot/tracking/tracker.hpp"
@@ -83,10 +84,11 @@ int tracking_main(int argc, char** argv) {
                   [&](const std::string& stream, int64_t index) {
                     if (state_dir.empty()) return;
                     auto snapshot = tracking::to_msg(trackers.at(stream).tracker.state(), stream, index);
-                    if (!tracking::save_snapshot(snapshot, state_file(stream))) {
-                      spdlog::warn("cannot write tracker state '{}'", state_file(stream));
-                    } else {
+                    try {
+                      tracking::save_snapshot(snapshot, state_file(stream));
                       trackers.at(stream).saved_frame = index;
+                    } catch (const OutputError& e) {
+                      spdlog::warn("cannot write tracker state: {}", e.what());
                     }
                     state_out->write(snapshot);
                   });
