@@ -6,6 +6,7 @@
 #include <deque>
 #include <limits>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -329,66 +330,17 @@ void put_string(state_codec::Writer& w, const std::string& s) {
   w.put_bytes(s.data(), s.size());
 }
 
-// Every option, as the estimator uses it (min_moving_speed_px includes the scene's ground speed):
-// a state made under other options would not continue the same way.
+// Every option (for_each_motion_option), as the estimator uses it (min_moving_speed_px includes
+// the scene's ground speed): a state made under other options would not continue the same way.
 uint64_t options_fingerprint(const MotionOptions& o) {
   state_codec::Writer w;
-  w.put(o.max_features);
-  w.put(o.cell_size_px);
-  w.put(o.features_per_cell);
-  w.put(o.min_distance_px);
-  w.put(o.corner_block_size);
-  w.put(o.min_corner_response);
-  w.put(o.border_px);
-  w.put(o.empty_cell_retry_frames);
-  w.put(o.lk_window_px);
-  w.put(o.pyramid_levels);
-  w.put(o.lk_max_iterations);
-  w.put(o.lk_epsilon_px);
-  w.put(o.backward_levels);
-  w.put(o.max_forward_backward_px);
-  w.put(o.predict_with_previous_homography);
-  w.put(o.recover_large_motion);
-  w.put(o.max_step_error_px);
-  put_string(w, o.robust_method);
-  w.put(o.ransac_threshold_px);
-  w.put(o.ransac_max_iterations);
-  w.put(o.ransac_confidence);
-  w.put(o.min_inliers);
-  w.put(o.min_inlier_ratio);
-  w.put(o.min_tracked_ratio);
-  w.put(o.max_motion_fraction);
-  w.put(o.max_scale_change);
-  w.put(o.refine);
-  put_string(w, o.refine_loss);
-  w.put(o.refine_loss_scale_px);
-  w.put(o.refine_max_iterations);
-  w.put(o.refine_max_points);
-  w.put(o.refine_exclude_moving);
-  w.put(o.background_flow_degree);
-  w.put(o.history_frames);
-  w.put(o.min_track_frames);
-  w.put(o.position_sigma_px);
-  w.put(o.prior_weight);
-  w.put(o.moving_sigma_factor);
-  w.put(o.min_moving_speed_px);
-  w.put(o.min_moving_speed_mps);
-  w.put(o.scene_noise_factor);
-  w.put(o.scene_noise_max_px);
-  w.put(o.confirm_frames);
-  w.put(o.release_ratio);
-  w.put(o.parallax_rejection);
-  w.put(o.parallax_both_sides);
-  w.put(o.parallax_min_support);
-  w.put(o.parallax_min_support_fraction);
-  w.put(o.parallax_min_share);
-  w.put(o.parallax_min_spread);
-  w.put(o.parallax_stable_frames);
-  w.put(o.parallax_stable_angle_deg);
-  w.put(o.parallax_across_sigma);
-  w.put(o.parallax_across_floor_px);
-  w.put(o.parallax_cap_factor);
-  w.put(o.parallax_ransac_iterations);
+  for_each_motion_option(o, [&w](const char*, const auto& value, const auto&) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(value)>, std::string>) {
+      put_string(w, value);
+    } else {
+      w.put(value);
+    }
+  });
   return fnv1a64(w.bytes().data(), w.bytes().size());
 }
 

@@ -1,79 +1,29 @@
 #include "uavmot/motion/motion_options.hpp"
 
 #include <string>
+#include <vector>
 
 namespace uavmot::motion {
+namespace {
+
+void read_option(const ConfigNode& node, const char* key, bool& value, Flag) { node.read(key, value); }
+void read_option(const ConfigNode& node, const char* key, std::string& value, const Choices& choices) {
+  node.read_choice(key, value, std::vector<std::string>(choices.names.begin(), choices.names.end()));
+}
+template <class T>
+void read_option(const ConfigNode& node, const char* key, T& value, const Range<T>& range) {
+  node.read(key, value, range.low, range.high);
+}
+
+}  // namespace
 
 MotionOptions load_motion_options(const ConfigNode& node) {
   MotionOptions o;
-  node.expect_only({"max_features", "cell_size_px", "features_per_cell", "min_distance_px", "corner_block_size",
-                    "min_corner_response", "border_px", "empty_cell_retry_frames", "lk_window_px", "pyramid_levels", "lk_max_iterations",
-                    "lk_epsilon_px", "backward_levels", "max_forward_backward_px",
-                    "predict_with_previous_homography", "recover_large_motion", "max_step_error_px", "robust_method", "ransac_threshold_px",
-                    "ransac_max_iterations", "ransac_confidence", "min_inliers", "min_inlier_ratio",
-                    "min_tracked_ratio", "max_motion_fraction", "max_scale_change", "refine", "refine_loss",
-                    "refine_loss_scale_px", "refine_max_iterations", "refine_max_points", "refine_exclude_moving", "background_flow_degree", "history_frames",
-                    "min_track_frames", "position_sigma_px", "prior_weight", "moving_sigma_factor",
-                    "min_moving_speed_px", "min_moving_speed_mps", "scene_noise_factor", "scene_noise_max_px", "confirm_frames", "release_ratio", "parallax_rejection", "parallax_both_sides",
-                    "parallax_min_support", "parallax_min_support_fraction", "parallax_min_share", "parallax_min_spread", "parallax_stable_frames",
-                    "parallax_stable_angle_deg", "parallax_across_sigma", "parallax_across_floor_px", "parallax_cap_factor",
-                    "parallax_ransac_iterations"});
-  node.read("max_features", o.max_features, 10, 100000);
-  node.read("cell_size_px", o.cell_size_px, 0, 1024);
+  std::vector<std::string> keys;
+  for_each_motion_option(o, [&](const char* key, auto&, const auto&) { keys.emplace_back(key); });
+  node.expect_only(keys);
+  for_each_motion_option(o, [&](const char* key, auto& value, const auto& limits) { read_option(node, key, value, limits); });
   if (o.cell_size_px > 0 && o.cell_size_px < 8) node.fail("cell_size_px", "must be 0 (automatic) or >= 8");
-  node.read("features_per_cell", o.features_per_cell, 1, 64);
-  node.read("min_distance_px", o.min_distance_px, 1.0, 256.0);
-  node.read("corner_block_size", o.corner_block_size, 3, 15);
-  node.read("min_corner_response", o.min_corner_response, 0.0, 1.0);
-  node.read("border_px", o.border_px, 0, 256);
-  node.read("empty_cell_retry_frames", o.empty_cell_retry_frames, 1, 1000);
-  node.read("lk_window_px", o.lk_window_px, 5, 63);
-  node.read("pyramid_levels", o.pyramid_levels, 0, 6);
-  node.read("lk_max_iterations", o.lk_max_iterations, 1, 200);
-  node.read("lk_epsilon_px", o.lk_epsilon_px, 1e-5, 1.0);
-  node.read("backward_levels", o.backward_levels, 0, 6);
-  node.read("max_forward_backward_px", o.max_forward_backward_px, 0.01, 10.0);
-  node.read("predict_with_previous_homography", o.predict_with_previous_homography);
-  node.read("max_step_error_px", o.max_step_error_px, 0.0, 1000.0);
-  node.read_choice("robust_method", o.robust_method, {"ransac", "magsac"});
-  node.read("ransac_threshold_px", o.ransac_threshold_px, 0.1, 50.0);
-  node.read("ransac_max_iterations", o.ransac_max_iterations, 10, 100000);
-  node.read("ransac_confidence", o.ransac_confidence, 0.5, 0.999999);
-  node.read("min_inliers", o.min_inliers, 4, 100000);
-  node.read("min_inlier_ratio", o.min_inlier_ratio, 0.0, 1.0);
-  node.read("min_tracked_ratio", o.min_tracked_ratio, 0.0, 1.0);
-  node.read("max_motion_fraction", o.max_motion_fraction, 0.001, 2.0);
-  node.read("max_scale_change", o.max_scale_change, 0.001, 0.9);
-  node.read("refine", o.refine);
-  node.read_choice("refine_loss", o.refine_loss, {"cauchy", "huber", "none"});
-  node.read("refine_loss_scale_px", o.refine_loss_scale_px, 1e-3, 100.0);
-  node.read("refine_max_iterations", o.refine_max_iterations, 1, 1000);
-  node.read("refine_max_points", o.refine_max_points, 8, 1000000);
-  node.read("refine_exclude_moving", o.refine_exclude_moving);
-  node.read("background_flow_degree", o.background_flow_degree, 0, 4);
-  node.read("history_frames", o.history_frames, 2, 200);
-  node.read("min_track_frames", o.min_track_frames, 2, 200);
-  node.read("position_sigma_px", o.position_sigma_px, 1e-4, 10.0);
-  node.read("prior_weight", o.prior_weight, 0.0, 1000.0);
-  node.read("moving_sigma_factor", o.moving_sigma_factor, 0.0, 100.0);
-  node.read("min_moving_speed_px", o.min_moving_speed_px, 0.0, 1000.0);
-  node.read("min_moving_speed_mps", o.min_moving_speed_mps, 0.0, 1000.0);
-  node.read("scene_noise_factor", o.scene_noise_factor, 0.0, 100.0);
-  node.read("scene_noise_max_px", o.scene_noise_max_px, 0.0, 1000.0);
-  node.read("confirm_frames", o.confirm_frames, 1, 100);
-  node.read("release_ratio", o.release_ratio, 0.0, 1.0);
-  node.read("parallax_rejection", o.parallax_rejection);
-  node.read("parallax_both_sides", o.parallax_both_sides);
-  node.read("parallax_min_support", o.parallax_min_support, 2, 100000);
-  node.read("parallax_min_support_fraction", o.parallax_min_support_fraction, 0.0, 1.0);
-  node.read("parallax_min_share", o.parallax_min_share, 0.0, 1.0);
-  node.read("parallax_min_spread", o.parallax_min_spread, 0.0, 1.0);
-  node.read("parallax_stable_frames", o.parallax_stable_frames, 1, 1000);
-  node.read("parallax_stable_angle_deg", o.parallax_stable_angle_deg, 0.0, 90.0);
-  node.read("parallax_across_sigma", o.parallax_across_sigma, 0.0, 100.0);
-  node.read("parallax_across_floor_px", o.parallax_across_floor_px, 0.0, 100.0);
-  node.read("parallax_cap_factor", o.parallax_cap_factor, 0.0, 1000.0);
-  node.read("parallax_ransac_iterations", o.parallax_ransac_iterations, 1, 100000);
   if (o.lk_window_px % 2 == 0) node.fail("lk_window_px", "must be odd, got " + std::to_string(o.lk_window_px));
   if (o.corner_block_size % 2 == 0) {
     node.fail("corner_block_size", "must be odd, got " + std::to_string(o.corner_block_size));

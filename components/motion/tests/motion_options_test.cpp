@@ -1,9 +1,15 @@
 #include "uavmot/motion/motion_options.hpp"
 
+#include <cstdio>
+#include <string>
+#include <type_traits>
+#include <vector>
+
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
 #include "grid_corner_detector.hpp"
+#include "uavmot/core/error.hpp"
 #include "uavmot/motion/motion_estimator.hpp"
 
 namespace uavmot::motion {
@@ -41,6 +47,108 @@ TEST(MotionOptions, RejectsBadValuesNamingTheKey) {
   expect_error("robust_method: lmeds\n", "robust_method");
   expect_error("min_track_frames: 20\nhistory_frames: 10\n", "min_track_frames");
   expect_error("ransac_threshold_px: nan\n", "ransac_threshold_px");
+}
+
+// The options' keys, in the order of for_each_motion_option.
+std::vector<std::string> option_keys() {
+  std::vector<std::string> keys;
+  const MotionOptions o;
+  for_each_motion_option(o, [&](const char* key, const auto&, const auto&) { keys.emplace_back(key); });
+  return keys;
+}
+
+std::string yaml_value(bool v) { return v ? "true" : "false"; }
+std::string yaml_value(const std::string& v) { return v; }
+std::string yaml_value(int v) { return std::to_string(v); }
+std::string yaml_value(double v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.17g", v);
+  return text;
+}
+
+// Every option as "key: value" lines, doubles exactly.
+std::string printed(const MotionOptions& o) {
+  std::string out;
+  for_each_motion_option(o, [&](const char* key, const auto& value, const auto&) { out += std::string(key) + ": " + yaml_value(value) + "\n"; });
+  return out;
+}
+
+bool valid(const MotionOptions& o) {
+  try {
+    validate(o);
+    return true;
+  } catch (const InputError&) {
+    return false;
+  }
+}
+
+// The defaults with option INDEX (of for_each_motion_option) set to another value within its
+// limits that keeps the options valid; its YAML text in `text`.
+MotionOptions with_option_changed(size_t index, std::string& text) {
+  MotionOptions changed;
+  size_t at = 0;
+  bool done = false;
+  for_each_motion_option(changed, [&](const char*, auto& value, const auto& limits) {
+    if (at++ != index) return;
+    using T = std::decay_t<decltype(value)>;
+    const T original = value;
+    std::vector<T> candidates;
+    if constexpr (std::is_same_v<T, bool>) {
+      candidates = {!original};
+    } else if constexpr (std::is_same_v<T, std::string>) {
+      for (const char* name : limits.names) candidates.emplace_back(name);
+    } else if constexpr (std::is_same_v<T, int>) {
+      candidates = {original + 2, original - 2, original + 1, original - 1, limits.low, limits.high};
+    } else {
+      candidates = {original * 1.5, original * 0.5, (limits.low + limits.high) / 2, limits.low, limits.high};
+    }
+    for (const T& candidate : candidates) {
+      if constexpr (!std::is_same_v<T, bool> && !std::is_same_v<T, std::string>) {
+        if (candidate < limits.low || candidate > limits.high) continue;
+      }
+      if (candidate == original) continue;
+      value = candidate;
+      if (valid(changed)) {
+        text = yaml_value(candidate);
+        done = true;
+        return;
+      }
+    }
+    value = original;
+  });
+  EXPECT_TRUE(done) << "no other valid value for option " << index;
+  return changed;
+}
+
+TEST(MotionOptions, EveryOptionIsReadFromTheConfigurationFile) {
+  const std::vector<std::string> keys = option_keys();
+  ASSERT_GE(keys.size(), 56u);
+  for (size_t i = 0; i < keys.size(); ++i) {
+    std::string text;
+    const MotionOptions changed = with_option_changed(i, text);
+    const std::string yaml = keys[i] + ": " + text + "\n";
+    EXPECT_EQ(printed(load_motion_options(ConfigNode::load_string(yaml, "m.yaml"))), printed(changed)) << yaml;
+    EXPECT_NE(printed(changed), printed(MotionOptions{})) << yaml;
+  }
+}
+
+// The saved state's options fingerprint covers every option: a state saved under the defaults is
+// refused by an estimator with any one option changed (and restored by one with the defaults).
+TEST(MotionOptions, ChangingAnyOptionRefusesASavedState) {
+  const std::vector<uint8_t> state = MotionEstimator(MotionOptions{}).save_state();
+  MotionEstimator same(MotionOptions{});
+  EXPECT_NO_THROW(same.restore_state(state));
+  const std::vector<std::string> keys = option_keys();
+  for (size_t i = 0; i < keys.size(); ++i) {
+    std::string text;
+    MotionEstimator other(with_option_changed(i, text));
+    try {
+      other.restore_state(state);
+      ADD_FAILURE() << "a state saved with the default " << keys[i] << " was restored with " << keys[i] << " = " << text;
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find("saved with other motion options"), std::string::npos) << keys[i] << ": " << e.what();
+    }
+  }
 }
 
 TEST(MotionOptions, EstimatorRejectsInconsistentOptions) {

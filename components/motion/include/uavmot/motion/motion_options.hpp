@@ -2,6 +2,7 @@
 // Every parameter of the independent-motion layer (paper section II), with the defaults
 // explained in docs/motion.md. Lengths are pixels of the processed frame.
 
+#include <initializer_list>
 #include <string>
 
 #include "uavmot/core/yaml_config.hpp"
@@ -77,6 +78,81 @@ struct MotionOptions {
   double parallax_cap_factor = 3.0;    // parallax explained up to this times the supporters' median (tallest / typical structure)
   int parallax_ransac_iterations = 300;
 };
+
+// The limits of one option in the configuration file.
+template <class T>
+struct Range {  // a number in [low, high]
+  T low, high;
+};
+struct Flag {};  // true or false
+struct Choices {  // one of these words
+  std::initializer_list<const char*> names;
+};
+
+// Every option of MotionOptions, once, as visit(key, field, limits): the configuration file's keys
+// (load_motion_options) and the saved state's options fingerprint (MotionEstimator::save_state)
+// both go through this list, so an option added here is read and guards the saved state, and one
+// left out is caught by the tests (motion_options_test.cpp). OPTIONS is MotionOptions or
+// const MotionOptions. In the order of the struct, which is the order the fingerprint hashes.
+template <class Options, class Visit>
+void for_each_motion_option(Options& o, Visit&& visit) {
+  visit("max_features", o.max_features, Range<int>{10, 100000});
+  visit("cell_size_px", o.cell_size_px, Range<int>{0, 1024});  // 0 or >= 8: load_motion_options
+  visit("features_per_cell", o.features_per_cell, Range<int>{1, 64});
+  visit("min_distance_px", o.min_distance_px, Range<double>{1.0, 256.0});
+  visit("corner_block_size", o.corner_block_size, Range<int>{3, 15});
+  visit("min_corner_response", o.min_corner_response, Range<double>{0.0, 1.0});
+  visit("border_px", o.border_px, Range<int>{0, 256});
+  visit("empty_cell_retry_frames", o.empty_cell_retry_frames, Range<int>{1, 1000});
+  visit("lk_window_px", o.lk_window_px, Range<int>{5, 63});
+  visit("pyramid_levels", o.pyramid_levels, Range<int>{0, 6});
+  visit("lk_max_iterations", o.lk_max_iterations, Range<int>{1, 200});
+  visit("lk_epsilon_px", o.lk_epsilon_px, Range<double>{1e-5, 1.0});
+  visit("backward_levels", o.backward_levels, Range<int>{0, 6});
+  visit("max_forward_backward_px", o.max_forward_backward_px, Range<double>{0.01, 10.0});
+  visit("predict_with_previous_homography", o.predict_with_previous_homography, Flag{});
+  visit("recover_large_motion", o.recover_large_motion, Flag{});
+  visit("max_step_error_px", o.max_step_error_px, Range<double>{0.0, 1000.0});
+  visit("robust_method", o.robust_method, Choices{{"ransac", "magsac"}});
+  visit("ransac_threshold_px", o.ransac_threshold_px, Range<double>{0.1, 50.0});
+  visit("ransac_max_iterations", o.ransac_max_iterations, Range<int>{10, 100000});
+  visit("ransac_confidence", o.ransac_confidence, Range<double>{0.5, 0.999999});
+  visit("min_inliers", o.min_inliers, Range<int>{4, 100000});
+  visit("min_inlier_ratio", o.min_inlier_ratio, Range<double>{0.0, 1.0});
+  visit("min_tracked_ratio", o.min_tracked_ratio, Range<double>{0.0, 1.0});
+  visit("max_motion_fraction", o.max_motion_fraction, Range<double>{0.001, 2.0});
+  visit("max_scale_change", o.max_scale_change, Range<double>{0.001, 0.9});
+  visit("refine", o.refine, Flag{});
+  visit("refine_loss", o.refine_loss, Choices{{"cauchy", "huber", "none"}});
+  visit("refine_loss_scale_px", o.refine_loss_scale_px, Range<double>{1e-3, 100.0});
+  visit("refine_max_iterations", o.refine_max_iterations, Range<int>{1, 1000});
+  visit("refine_max_points", o.refine_max_points, Range<int>{8, 1000000});
+  visit("refine_exclude_moving", o.refine_exclude_moving, Flag{});
+  visit("background_flow_degree", o.background_flow_degree, Range<int>{0, 4});
+  visit("history_frames", o.history_frames, Range<int>{2, 200});
+  visit("min_track_frames", o.min_track_frames, Range<int>{2, 200});
+  visit("position_sigma_px", o.position_sigma_px, Range<double>{1e-4, 10.0});
+  visit("prior_weight", o.prior_weight, Range<double>{0.0, 1000.0});
+  visit("moving_sigma_factor", o.moving_sigma_factor, Range<double>{0.0, 100.0});
+  visit("min_moving_speed_px", o.min_moving_speed_px, Range<double>{0.0, 1000.0});
+  visit("min_moving_speed_mps", o.min_moving_speed_mps, Range<double>{0.0, 1000.0});
+  visit("scene_noise_factor", o.scene_noise_factor, Range<double>{0.0, 100.0});
+  visit("scene_noise_max_px", o.scene_noise_max_px, Range<double>{0.0, 1000.0});
+  visit("confirm_frames", o.confirm_frames, Range<int>{1, 100});
+  visit("release_ratio", o.release_ratio, Range<double>{0.0, 1.0});
+  visit("parallax_rejection", o.parallax_rejection, Flag{});
+  visit("parallax_both_sides", o.parallax_both_sides, Flag{});
+  visit("parallax_min_support", o.parallax_min_support, Range<int>{2, 100000});
+  visit("parallax_min_support_fraction", o.parallax_min_support_fraction, Range<double>{0.0, 1.0});
+  visit("parallax_min_share", o.parallax_min_share, Range<double>{0.0, 1.0});
+  visit("parallax_min_spread", o.parallax_min_spread, Range<double>{0.0, 1.0});
+  visit("parallax_stable_frames", o.parallax_stable_frames, Range<int>{1, 1000});
+  visit("parallax_stable_angle_deg", o.parallax_stable_angle_deg, Range<double>{0.0, 90.0});
+  visit("parallax_across_sigma", o.parallax_across_sigma, Range<double>{0.0, 100.0});
+  visit("parallax_across_floor_px", o.parallax_across_floor_px, Range<double>{0.0, 100.0});
+  visit("parallax_cap_factor", o.parallax_cap_factor, Range<double>{0.0, 1000.0});
+  visit("parallax_ransac_iterations", o.parallax_ransac_iterations, Range<int>{1, 100000});
+}
 
 // Reads a `motion:` section; absent keys keep their defaults. Throws uavmot::InputError naming
 // the file, line and key for unknown keys, wrong types and out-of-range values.
