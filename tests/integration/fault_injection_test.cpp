@@ -62,16 +62,9 @@ class ChainRuns : public ::testing::Test {
   static void SetUpTestSuite() {
     if (!root_.empty()) return;
     const std::string root = testing::fresh_dir("fault_injection");
-    const std::string sequence = root + "/paper";
-    ChildProcess sim({binary("uavmot-sim"), "--preset", "paper", "--seed", "3", "--frames", "120", "--out", sequence},
-                     root + "/sim.log");
-    ASSERT_EQ(sim.wait(std::chrono::seconds(180)), 0) << sim.log();
-    ChildProcess undisturbed({binary("uavmot"), "launch", testing::kLocalProfile, "--input", sequence, "--out",
-                              root + "/undisturbed", "--set", "domain=" + std::to_string(domain(0)), "--set", "hang_timeout=7"},
-                             root + "/undisturbed.log");
-    ASSERT_EQ(undisturbed.wait(std::chrono::seconds(300)), 0) << undisturbed.log();
+    ASSERT_NO_FATAL_FAILURE(testing::run_undisturbed_paper(root, 120, {"domain=" + std::to_string(domain(0)), "hang_timeout=7"}));
     root_ = root;
-    sequence_ = sequence;
+    sequence_ = root + "/paper";
   }
   static std::string root_, sequence_;
 };
@@ -84,19 +77,9 @@ TEST_P(FaultInjection, ComponentFaultMidRun) {
   ASSERT_FALSE(root_.empty());
   const std::string name = name_of({f, 0});
   const std::string out = root_ + "/" + name;
-  ChildProcess launch({binary("uavmot"), "launch", testing::kLocalProfile, "--input", sequence_, "--out", out, "--set",
-                       "domain=" + std::to_string(domain(f.domain)), "--set", "hang_timeout=7"},
+  ChildProcess launch(testing::local_launch(sequence_, out, {"domain=" + std::to_string(domain(f.domain)), "hang_timeout=7"}),
                       root_ + "/" + name + ".log");
-  int victim = -1;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(180);
-  while (victim < 0 && std::chrono::steady_clock::now() < deadline && !launch.wait(std::chrono::milliseconds(0))) {
-    const int pid = testing::launched_pid(launch.log(), f.component);
-    if (pid > 0 && testing::last_frame_written(out + "/tracks_obb.csv") >= 40) {
-      ASSERT_EQ(::kill(pid, f.signal), 0);
-      victim = pid;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
+  const int victim = testing::signal_when_written(launch, f.component, out + "/tracks_obb.csv", 40, f.signal).pid;
   ASSERT_GT(victim, 0) << launch.log();
   const auto code = launch.wait(std::chrono::seconds(300));
   if (!code) {
@@ -168,16 +151,7 @@ TEST_F(ChainRuns, DownlinkSigkillMidRun) {
                     "--out", root_ + "/" + name + "_air", "--set", link_domain, "--set",
                     "air_domain=" + std::to_string(domain(17))},
                    root_ + "/" + name + "_air.log");
-  int victim = -1;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(180);
-  while (victim < 0 && std::chrono::steady_clock::now() < deadline && !air.wait(std::chrono::milliseconds(0))) {
-    const int pid = testing::launched_pid(air.log(), "downlink");
-    if (pid > 0 && testing::last_frame_written(ground_out + "/tracks_obb.csv") >= 40) {
-      ASSERT_EQ(::kill(pid, SIGKILL), 0);
-      victim = pid;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
+  const int victim = testing::signal_when_written(air, "downlink", ground_out + "/tracks_obb.csv", 40, SIGKILL).pid;
   ASSERT_GT(victim, 0) << air.log() << ground.log();
   const auto air_code = air.wait(std::chrono::seconds(300));
   const auto ground_code = ground.wait(std::chrono::seconds(120));
@@ -230,30 +204,21 @@ TEST_P(LiveFaultInjection, ResultsFlowAgainAfterARespawn) {
   ASSERT_FALSE(root_.empty());
   const std::string name = std::string("live_") + f.component;
   const std::string out = root_ + "/" + name;
-  ChildProcess launch({binary("uavmot"), "launch", testing::kLocalProfile, "--input", sequence_, "--out", out, "--set",
-                       "domain=" + std::to_string(domain(f.domain)), "--set", "mode=live", "--set",
-                       "respawn_delay=" + std::string(kLiveRespawnDelay)},
+  ChildProcess launch(testing::local_launch(sequence_, out,
+                                            {"domain=" + std::to_string(domain(f.domain)), "mode=live",
+                                             "respawn_delay=" + std::string(kLiveRespawnDelay)}),
                       root_ + "/" + name + ".log");
   using Clock = std::chrono::steady_clock;
-  int victim = -1;
-  Clock::time_point killed;
-  auto deadline = Clock::now() + std::chrono::seconds(120);
-  while (victim < 0 && Clock::now() < deadline && !launch.wait(std::chrono::milliseconds(0))) {
-    const int pid = testing::launched_pid(launch.log(), f.component);
-    if (pid > 0 && testing::last_frame_written(out + "/tracks_obb.csv") >= 60) {
-      ASSERT_EQ(::kill(pid, SIGKILL), 0);
-      killed = Clock::now();
-      victim = pid;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
-  }
+  const int victim = testing::signal_when_written(launch, f.component, out + "/tracks_obb.csv", 60, SIGKILL,
+                                                  std::chrono::milliseconds(2), std::chrono::seconds(120)).pid;
+  const Clock::time_point killed = Clock::now();
   ASSERT_GT(victim, 0) << launch.log();
   const int frame_at_kill = testing::last_frame_written(out + "/tracks_obb.csv");
   // The respawn, then the first tracks of a frame published after it: the source publishes one
   // frame every 40 ms from the kill on (a respawned source continues from its last frame).
   double respawned_s = -1, recovered_s = -1;
   int frame_at_respawn = 0, first_new_frame = 0;
-  deadline = Clock::now() + std::chrono::seconds(30);
+  const auto deadline = Clock::now() + std::chrono::seconds(30);
   while (recovered_s < 0 && Clock::now() < deadline && !launch.wait(std::chrono::milliseconds(0))) {
     const int pid = testing::launched_pid(launch.log(), f.component);
     const int frame = testing::last_frame_written(out + "/tracks_obb.csv");

@@ -10,14 +10,11 @@
 
 #include <filesystem>
 #include <fstream>
-#include <map>
-#include <regex>
-#include <sstream>
-#include <thread>
 
 #include <gtest/gtest.h>
 
 #include "child_process.hpp"
+#include "launched_chain.hpp"
 #include "uavmot/core/oriented_box.hpp"
 #include "uavmot/eval/evaluate.hpp"
 #include "uavmot/eval/predictions.hpp"
@@ -25,31 +22,10 @@
 
 namespace uavmot {
 namespace {
-using testing::binary;
 using testing::ChildProcess;
 namespace fs = std::filesystem;
 
-const std::string kProfile = std::string(UAVMOT_SOURCE_DIR) + "/bringup/local.yaml";
-
-// frame -> id -> box (x, y, w, h)
-using TrackTable = std::map<int, std::map<int, cv::Rect2d>>;
-
-TrackTable read_tracks(const std::string& file) {
-  TrackTable table;
-  std::istringstream in(testing::read_file(file));
-  for (std::string line; std::getline(in, line);) {
-    std::vector<double> v;
-    std::stringstream row(line);
-    for (std::string cell; std::getline(row, cell, ',');) v.push_back(std::stod(cell));
-    table[static_cast<int>(v[0])][static_cast<int>(v[1])] = {v[2], v[3], v[4], v[5]};
-  }
-  return table;
-}
-
-double iou(const cv::Rect2d& a, const cv::Rect2d& b) {
-  const double inter = (a & b).area();
-  return inter / (a.area() + b.area() - inter);
-}
+using testing::read_tracks;
 
 double mota(const std::string& sequence, const std::string& out) {
   const auto seq = eval::load_sequence(sequence);
@@ -79,39 +55,14 @@ void leave_abandoned_ports_on_every_id(int domain) {
 TEST(TrackerRestart, SigkilledTrackerContinuesWithTheSameTrackIds) {
   const std::string root = testing::fresh_dir("tracker_restart");
   const std::string sequence = root + "/paper";
-  ChildProcess sim({binary("uavmot-sim"), "--preset", "paper", "--seed", "3", "--frames", "160", "--out", sequence},
-                   root + "/sim.log");
-  ASSERT_EQ(sim.wait(std::chrono::seconds(180)), 0) << sim.log();
-
-  ChildProcess undisturbed({binary("uavmot"), "launch", kProfile, "--input", sequence, "--out", root + "/undisturbed",
-                            "--set", "domain=35"},
-                           root + "/undisturbed.log");
-  ASSERT_EQ(undisturbed.wait(std::chrono::seconds(300)), 0) << undisturbed.log();
+  ASSERT_NO_FATAL_FAILURE(testing::run_undisturbed_paper(root, 160, {"domain=35"}));
 
   leave_abandoned_ports_on_every_id(36);
-  ChildProcess launch({binary("uavmot"), "launch", kProfile, "--input", sequence, "--out", root + "/killed", "--set",
-                       "domain=36"},
-                      root + "/killed.log");
+  ChildProcess launch(testing::local_launch(sequence, root + "/killed", {"domain=36"}), root + "/killed.log");
   // Kill the tracker once it has written tracks past frame 70.
-  const std::regex started(R"(started tracking \(pid (\d+)\))");
-  pid_t tracking = -1;
-  int kill_frame = 0;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(120);
-  while (std::chrono::steady_clock::now() < deadline && kill_frame == 0) {
-    std::smatch m;
-    const std::string log = launch.log();
-    if (tracking < 0 && std::regex_search(log, m, started)) tracking = std::stoi(m[1]);
-    const std::string obb = testing::read_file(root + "/killed/tracks_obb.csv");
-    const auto last_line = obb.rfind('\n', obb.size() >= 2 ? obb.size() - 2 : 0);
-    if (tracking > 0 && last_line != std::string::npos && obb.size() > last_line + 1) {
-      const int frame = std::atoi(obb.c_str() + last_line + 1);
-      if (frame >= 70) {
-        ASSERT_EQ(::kill(tracking, SIGKILL), 0);
-        kill_frame = frame;
-      }
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
+  const int kill_frame = testing::signal_when_written(launch, "tracking", root + "/killed/tracks_obb.csv", 70, SIGKILL,
+                                                      std::chrono::milliseconds(5), std::chrono::seconds(120))
+                             .frame;
   ASSERT_GT(kill_frame, 0) << launch.log();
   ASSERT_EQ(launch.wait(std::chrono::seconds(300)), 0) << launch.log();
   EXPECT_NE(launch.log().find("tracking killed by signal 9"), std::string::npos) << launch.log();
@@ -122,13 +73,7 @@ TEST(TrackerRestart, SigkilledTrackerContinuesWithTheSameTrackIds) {
   const auto after = read_tracks(root + "/killed/tracks.txt");
   const int probe = kill_frame + 20;
   ASSERT_TRUE(before.count(probe) && before.count(kill_frame - 5)) << "no confirmed tracks around the kill";
-  int compared = 0, kept = 0;
-  for (const auto& [id, box] : before.at(probe)) {
-    if (!before.at(kill_frame - 5).count(id)) continue;  // not yet in view before the kill
-    ++compared;
-    const auto it = after.find(probe);
-    if (it != after.end() && it->second.count(id) && iou(it->second.at(id), box) > 0.5) ++kept;
-  }
+  const auto [compared, kept] = testing::ids_kept(before, after, probe, kill_frame - 5);
   ASSERT_GT(compared, 2) << "too few tracks span the kill to judge";
   EXPECT_GE(kept, compared * 9 / 10) << kept << " of " << compared << " tracks kept their ids";
 

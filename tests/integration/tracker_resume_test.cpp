@@ -13,41 +13,30 @@
 #include <filesystem>
 #include <regex>
 #include <set>
-#include <sstream>
 #include <thread>
 
 #include <gtest/gtest.h>
 
 #include "child_process.hpp"
 #include "launched_chain.hpp"
+#include "obb_rows.hpp"
 
 namespace uavmot {
 namespace {
-using testing::binary;
 using testing::ChildProcess;
 namespace fs = std::filesystem;
 
-using testing::iou;
 using testing::last_frame_written;
 using testing::read_tracks;
-const std::string kProfile = testing::kLocalProfile;
 
 TEST(TrackerResume, NewLaunchContinuesFromTheSavedStateWithTheSameTrackIds) {
   const std::string root = testing::fresh_dir("tracker_resume");
   const std::string sequence = root + "/paper";
   const std::string state = root + "/tracker_state";  // the user's folder, outside any launch's run_dir
-  ChildProcess sim({binary("uavmot-sim"), "--preset", "paper", "--seed", "3", "--frames", "160", "--out", sequence},
-                   root + "/sim.log");
-  ASSERT_EQ(sim.wait(std::chrono::seconds(180)), 0) << sim.log();
-
-  ChildProcess undisturbed({binary("uavmot"), "launch", kProfile, "--input", sequence, "--out", root + "/undisturbed",
-                            "--set", "domain=180"},
-                           root + "/undisturbed.log");
-  ASSERT_EQ(undisturbed.wait(std::chrono::seconds(300)), 0) << undisturbed.log();
+  ASSERT_NO_FATAL_FAILURE(testing::run_undisturbed_paper(root, 160, {"domain=180"}));
 
   // First launch: stopped as a whole (SIGINT, as at shutdown of the host) once tracks past frame 70 are written.
-  ChildProcess first({binary("uavmot"), "launch", kProfile, "--input", sequence, "--out", root + "/first", "--set",
-                      "domain=181", "--set", "tracker_state=" + state},
+  ChildProcess first(testing::local_launch(sequence, root + "/first", {"domain=181", "tracker_state=" + state}),
                      root + "/first.log");
   const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(180);
   while (std::chrono::steady_clock::now() < deadline && last_frame_written(root + "/first/tracks_obb.csv") < 70 &&
@@ -66,8 +55,8 @@ TEST(TrackerResume, NewLaunchContinuesFromTheSavedStateWithTheSameTrackIds) {
   ASSERT_TRUE(fs::exists(state + "/tracker_state_uav1.cdr"));
 
   // Second launch: a new launcher (new run_dir), the same state folder, the remaining frames.
-  ChildProcess second({binary("uavmot"), "launch", kProfile, "--input", sequence, "--out", root + "/second", "--set",
-                       "domain=182", "--set", "tracker_state=" + state, "--set", "start=" + std::to_string(saved - 10)},
+  ChildProcess second(testing::local_launch(sequence, root + "/second",
+                                            {"domain=182", "tracker_state=" + state, "start=" + std::to_string(saved - 10)}),
                       root + "/second.log");
   ASSERT_EQ(second.wait(std::chrono::seconds(300)), 0) << second.log();
   const std::string second_log = second.log();
@@ -84,15 +73,7 @@ TEST(TrackerResume, NewLaunchContinuesFromTheSavedStateWithTheSameTrackIds) {
   // confirmed track or to a tentative one that the restored state carries (tracks_obb.csv has every
   // state; tracks.txt only the confirmed).
   std::set<int> first_ids;
-  {
-    std::istringstream rows(testing::read_file(root + "/first/tracks_obb.csv"));
-    std::string row;
-    std::getline(rows, row);  // header
-    while (std::getline(rows, row)) {
-      const auto comma = row.find(',');
-      if (comma != std::string::npos) first_ids.insert(std::stoi(row.substr(comma + 1)));
-    }
-  }
+  for (const auto& row : testing::read_obb_rows(root + "/first/tracks_obb.csv")) first_ids.insert(row.id);
   for (const auto& [frame, tracks] : after) {
     for (const auto& [id, box] : tracks) {
       EXPECT_TRUE(id >= next_id || first_ids.count(id)) << "frame " << frame << ": id " << id << " reused";
@@ -101,13 +82,7 @@ TEST(TrackerResume, NewLaunchContinuesFromTheSavedStateWithTheSameTrackIds) {
   // Objects in view before the stop keep their ids after it.
   const int probe = saved + 15;
   ASSERT_TRUE(before.count(probe) && before.count(saved - 5)) << "no confirmed tracks around the stop";
-  int compared = 0, kept = 0;
-  for (const auto& [id, box] : before.at(probe)) {
-    if (!before.at(saved - 5).count(id)) continue;  // not yet in view before the stop
-    ++compared;
-    const auto it = after.find(probe);
-    if (it != after.end() && it->second.count(id) && iou(it->second.at(id), box) > 0.5) ++kept;
-  }
+  const auto [compared, kept] = testing::ids_kept(before, after, probe, saved - 5);
   std::printf("stopped at frame %d; ids kept across the new launch: %d/%d\n", saved, kept, compared);
   ASSERT_GT(compared, 2) << "too few tracks span the stop to judge";
   // A few tracks lose their object while motion finds it again (see above) and end.

@@ -16,36 +16,18 @@
 
 namespace uavmot {
 namespace {
-using testing::binary;
 using testing::ChildProcess;
 
 TEST(Watchdog, StoppedTrackerIsKilledAndRespawnedAndTheResultsAreUnchanged) {
   const std::string root = testing::fresh_dir("watchdog");
-  const std::string sequence = root + "/paper";
-  ChildProcess sim({binary("uavmot-sim"), "--preset", "paper", "--seed", "3", "--frames", "120", "--out", sequence},
-                   root + "/sim.log");
-  ASSERT_EQ(sim.wait(std::chrono::seconds(180)), 0) << sim.log();
+  std::string undisturbed_log;
+  ASSERT_NO_FATAL_FAILURE(testing::run_undisturbed_paper(root, 120, {"domain=183", "hang_timeout=7"}, &undisturbed_log));
+  EXPECT_EQ(undisturbed_log.find("hangs"), std::string::npos) << "the watchdog fired on an undisturbed run\n"
+                                                              << undisturbed_log;
 
-  ChildProcess undisturbed({binary("uavmot"), "launch", testing::kLocalProfile, "--input", sequence, "--out",
-                            root + "/undisturbed", "--set", "domain=183", "--set", "hang_timeout=7"},
-                           root + "/undisturbed.log");
-  ASSERT_EQ(undisturbed.wait(std::chrono::seconds(300)), 0) << undisturbed.log();
-  EXPECT_EQ(undisturbed.log().find("hangs"), std::string::npos) << "the watchdog fired on an undisturbed run\n"
-                                                                 << undisturbed.log();
-
-  ChildProcess launch({binary("uavmot"), "launch", testing::kLocalProfile, "--input", sequence, "--out", root + "/stopped",
-                       "--set", "domain=184", "--set", "hang_timeout=7"},
+  ChildProcess launch(testing::local_launch(root + "/paper", root + "/stopped", {"domain=184", "hang_timeout=7"}),
                       root + "/stopped.log");
-  int stopped = -1;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(180);
-  while (stopped < 0 && std::chrono::steady_clock::now() < deadline && !launch.wait(std::chrono::milliseconds(0))) {
-    const int pid = testing::launched_pid(launch.log(), "tracking");
-    if (pid > 0 && testing::last_frame_written(root + "/stopped/tracks_obb.csv") >= 40) {
-      ASSERT_EQ(::kill(pid, SIGSTOP), 0);
-      stopped = pid;
-    }
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  }
+  const int stopped = testing::signal_when_written(launch, "tracking", root + "/stopped/tracks_obb.csv", 40, SIGSTOP).pid;
   ASSERT_GT(stopped, 0) << launch.log();
   // Noticed within the timeout and a few report periods (hang_timeout 7: above the 5 s a lossless
   // write() may block in Fast DDS, during which the components held back do not report).

@@ -11,14 +11,13 @@
 #include <chrono>
 #include <algorithm>
 #include <cmath>
-#include <fstream>
-#include <sstream>
 #include <string>
 #include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "child_process.hpp"
+#include "obb_rows.hpp"
 
 namespace uavmot {
 namespace {
@@ -28,34 +27,11 @@ using testing::ChildProcess;
 using testing::fresh_dir;
 using testing::read_file;
 
-struct TrackBox {
-  int frame = 0;
-  std::string state;
-  double cx = 0, cy = 0, speed_mps = 0;
-};
-
-// The rows of tracks_obb.csv (frame,id,state,cx,cy,width,length,angle_deg,vx,vy,cx_m,cy_m,width_m,
-// length_m,speed_mps,...).
-std::vector<TrackBox> track_boxes(const std::string& tracks_obb) {
-  std::vector<TrackBox> out;
-  std::istringstream in(read_file(tracks_obb));
-  std::string line;
-  std::getline(in, line);  // header
-  while (std::getline(in, line)) {
-    std::vector<std::string> f;
-    std::istringstream fields(line);
-    for (std::string v; std::getline(fields, v, ',');) f.push_back(v);
-    if (f.size() < 15) continue;
-    out.push_back({std::stoi(f[0]), f[2], std::stod(f[3]), std::stod(f[4]), std::stod(f[14])});
-  }
-  return out;
-}
-
 struct ClipRun {
   int frames = 0;
-  std::vector<TrackBox> boxes;
+  std::vector<testing::ObbRow> boxes;
   double confirmed_per_frame() const {
-    const auto n = std::count_if(boxes.begin(), boxes.end(), [](const TrackBox& b) { return b.state == "confirmed"; });
+    const auto n = std::count_if(boxes.begin(), boxes.end(), [](const testing::ObbRow& b) { return b.state == "confirmed"; });
     return static_cast<double>(n) / std::max(1, frames);
   }
 };
@@ -66,7 +42,7 @@ ClipRun process(const std::string& clip, const std::string& out) {
   EXPECT_TRUE(code.has_value() && *code == 0) << clip << ":\n" << p.log();
   ClipRun run;
   run.frames = nlohmann::json::parse(read_file(out + "/summary.json")).at("frames").get<int>();
-  run.boxes = track_boxes(out + "/tracks_obb.csv");
+  run.boxes = testing::read_obb_rows(out + "/tracks_obb.csv");
   return run;
 }
 
@@ -90,7 +66,7 @@ TEST(RealVideoScenario, TheCarDrivingPastTheShedsIsTracked) {
   const ClipRun run = process("aphill/aphill_240_1fps_crf32.mp4", dir + "/aphill_1fps");
   int confirmed = 0, live = 0;
   for (const auto& b : run.boxes) {
-    if (b.frame < 170 || b.frame > 182 || b.cx < 100 || b.cx > 210 || b.cy < 60 || b.cy > 180 || b.speed_mps < 2.0) continue;
+    if (b.frame < 170 || b.frame > 182 || b.cx < 100 || b.cx > 210 || b.cy < 60 || b.cy > 180 || !(b.speed_mps >= 2.0)) continue;
     confirmed += b.state == "confirmed";
     live += b.state == "confirmed" || b.state == "coasting";
   }
