@@ -105,11 +105,7 @@ void ResultsRelay::publish_up_to(const std::string& id, StreamState& s, int64_t 
 
 void ResultsRelay::end(const std::string& id, StreamState& s) {
   publish_up_to(id, s, std::numeric_limits<int64_t>::max());
-  msg::FrameResults eos;
-  eos.stream_id(id);
-  eos.frame_index(std::max<int64_t>(s.last_index, 1));
-  eos.end_of_stream(true);
-  writer_->write_reliably(eos, dds::end_of_stream_patience(mode_));
+  dds::write_end_of_stream(*writer_, id, std::max<int64_t>(s.last_index, 1), mode_);
   ++streams_ended_;
   spdlog::info("stream '{}' ended", id);
 }

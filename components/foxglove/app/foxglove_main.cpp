@@ -98,8 +98,10 @@ class TypedBridge final : public TopicBridge {
   size_t drain() override {
     // A topic is read only while a viewer watches one of its channels: with no viewer the bridge
     // has no reader on the chain's topics at all, so the chain's writers have nobody extra to serve.
-    const bool watched = server_.has_subscribers(raw_channel_) || (foxglove_channel_ && server_.has_subscribers(foxglove_channel_));
-    if (!watched) {
+    // Asked once a drain: a viewer that subscribes meanwhile gets the samples of the next one.
+    const bool raw_watched = server_.has_subscribers(raw_channel_);
+    const bool foxglove_watched = foxglove_channel_ && server_.has_subscribers(foxglove_channel_);
+    if (!raw_watched && !foxglove_watched) {
       if (reader_) {
         participant_.delete_reader(std::move(reader_));
         spdlog::info("foxglove: no viewer watches {}; reader closed", spec_.topic);
@@ -117,11 +119,11 @@ class TypedBridge final : public TopicBridge {
       ++n;
       const uint64_t received = wall_ns();
       // Work only for channels somebody watches: with no viewer the bridge costs a take().
-      if (server_.has_subscribers(raw_channel_)) {
+      if (raw_watched) {
         const auto bytes = dds::to_cdr(type_, sample_);
         server_.publish(raw_channel_, received, bytes.data(), bytes.size());
       }
-      if (foxglove_channel_ && server_.has_subscribers(foxglove_channel_) && image_due(received)) {
+      if (foxglove_watched && image_due(received)) {
         std::string why;
         if (const auto bytes = record::to_foxglove(sample_, options_, why)) {
           server_.publish(foxglove_channel_, received, bytes->data(), bytes->size());

@@ -1,14 +1,17 @@
 #pragma once
-// Small pieces every chain node uses: publishing by delivery mode, end-of-stream bookkeeping,
-// latency from capture time, and once-per-cause logging of rejected samples.
+// Small pieces every chain node uses: publishing by delivery mode, a frame's output with its health
+// report, end-of-stream samples and bookkeeping, latency from capture time, and once-per-cause
+// logging of rejected samples.
 
 #include <chrono>
+#include <functional>
 #include <map>
 #include <set>
 #include <string>
 
 #include <spdlog/spdlog.h>
 
+#include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/dds/topic_writer.hpp"
 #include "uavmot/dds/topics.hpp"
 
@@ -29,11 +32,37 @@ bool publish(TopicWriter<PubSubType>& writer, typename PubSubType::type& sample,
   return mode == DeliveryMode::Lossless ? writer.write_reliably(sample) : writer.write(sample);
 }
 
+// Called once a frame's output is published (e.g. to save state that includes that frame).
+using PublishedHook = std::function<void(const std::string& stream, int64_t index)>;
+
+// The output of frame INDEX, processed in PROCESS_MS: published by delivery mode (a sample live mode
+// could not deliver counts as a drop), then PUBLISHED, then the frame's health report (its latency
+// from CAPTURE_TIME_NS to now).
+template <class PubSubType>
+void publish_frame_output(TopicWriter<PubSubType>& writer, typename PubSubType::type& out, DeliveryMode mode,
+                          HealthReporter& health, const PublishedHook& published, const std::string& stream, int64_t index,
+                          double process_ms, int64_t capture_time_ns) {
+  if (!publish(writer, out, mode)) health.dropped();
+  if (published) published(stream, index);
+  health.frame_out(index, process_ms, latency_ms_since(capture_time_ns));
+  health.set_bytes_out(writer.bytes_sent());
+}
+
 // How long an end of stream (and the flush after it) may wait for the readers: in lossless mode as
 // long as any sample (a stalled link or a slow reader must not cost the end of stream), in live
 // mode briefly.
 inline std::chrono::seconds end_of_stream_patience(DeliveryMode mode) {
   return mode == DeliveryMode::Lossless ? std::chrono::seconds(60) : std::chrono::seconds(10);
+}
+
+// Passes the end of STREAM on (its last frame INDEX), waiting for the readers as end_of_stream_patience says.
+template <class PubSubType>
+void write_end_of_stream(TopicWriter<PubSubType>& writer, const std::string& stream, int64_t index, DeliveryMode mode) {
+  typename PubSubType::type eos;
+  eos.stream_id(stream);
+  eos.frame_index(index);
+  eos.end_of_stream(true);
+  writer.write_reliably(eos, end_of_stream_patience(mode));
 }
 
 // Which streams have ended; a node exits when the expected number has.

@@ -26,7 +26,7 @@ class PairedNode {
   using Process = std::function<std::optional<typename PubOut::type>(const std::string& stream, int64_t index, const A&, const B&)>;
   // Called after the sample of (stream, index) was published (e.g. to save state only once its
   // output is out: a restart then redoes at most a frame whose output readers may already have).
-  using Published = std::function<void(const std::string& stream, int64_t index)>;
+  using Published = PublishedHook;
 
   struct Spec {
     std::string component;
@@ -120,20 +120,13 @@ class PairedNode {
       auto out = process_(id, pair->index, pair->first, pair->second);
       if (!out) continue;
       const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      if (!publish(*writer_, *out, mode_)) health_.dropped();
-      if (published_) published_(id, pair->index);
-      health_.frame_out(pair->index, ms, latency_ms_since(out->capture_time_ns()));
-      health_.set_bytes_out(writer_->bytes_sent());
+      publish_frame_output(*writer_, *out, mode_, health_, published_, id, pair->index, ms, out->capture_time_ns());
     }
     health_.dropped(s.pairing.dropped() - dropped_before);
     if (s.ended_a && s.ended_b && !ends_.ended(id)) {
       // Both inputs ended: whatever is still unpaired can never complete.
       health_.dropped(s.pairing.pending());
-      typename PubOut::type eos;
-      eos.stream_id(id);
-      eos.frame_index(s.last_index);
-      eos.end_of_stream(true);
-      writer_->write_reliably(eos, end_of_stream_patience(mode_));
+      write_end_of_stream(*writer_, id, s.last_index, mode_);
       ends_.end(id);
     }
   }

@@ -26,7 +26,7 @@ class SingleInputNode {
   // Returns the sample to publish, or nullopt to publish nothing for this input.
   using Process = std::function<std::optional<Output>(const std::string& stream, const In&)>;
   // Called once a frame's output is published (e.g. to save state that includes that frame).
-  using Published = std::function<void(const std::string& stream, int64_t index)>;
+  using Published = PublishedHook;
 
   struct Spec {
     std::string component;
@@ -78,11 +78,7 @@ class SingleInputNode {
   void handle(typename PubIn::type& sample) {
     const std::string stream = sample.stream_id().to_string();
     if (sample.end_of_stream()) {
-      Output eos;
-      eos.stream_id(stream);
-      eos.frame_index(sample.frame_index());
-      eos.end_of_stream(true);
-      writer_->write_reliably(eos, end_of_stream_patience(mode_));
+      write_end_of_stream(*writer_, stream, sample.frame_index(), mode_);
       ends_.end(stream);
       return;
     }
@@ -108,10 +104,7 @@ class SingleInputNode {
     auto out = process_(stream, *value);
     if (!out) return;
     const double ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-    if (!publish(*writer_, *out, mode_)) health_.dropped();
-    if (published_) published_(stream, index);
-    health_.frame_out(index, ms, latency_ms_since(sample.capture_time_ns()));
-    health_.set_bytes_out(writer_->bytes_sent());
+    publish_frame_output(*writer_, *out, mode_, health_, published_, stream, index, ms, sample.capture_time_ns());
   }
 
   Spec spec_;
