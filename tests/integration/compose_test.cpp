@@ -93,6 +93,8 @@ TEST_F(Compose, WithSecurityOnTheContainersDeliverTheSameResults) {
     const std::string container = kProject + "_" + service + "_" + "1";
     const std::string seen = podman({"inspect", "--format", mounts, container}, std::string(service) + "_mounts");
     EXPECT_NE(seen.find(security), std::string::npos) << service << ": " << seen;
+    const std::string cmd = podman({"inspect", "--format", "{{.Config.Cmd}}", container}, std::string(service) + "_cmd");
+    EXPECT_NE(cmd.find("qos_dir=" + security), std::string::npos) << service << ": " << cmd;
   }
 }
 
