@@ -7,9 +7,15 @@
 #   uavmot launch bringup/ground.yaml ... --set qos_dir=OUT_DIR     # the one switch
 #   uavmot launch bringup/air.yaml ...    --set qos_dir=OUT_DIR
 #
+#   uavmot launch bringup/local.yaml ...  --set qos_dir=OUT_DIR     # one host, the same material
+#   UAVMOT_QOS_PROFILES=OUT_DIR/status.xml uavmot status
+#
 # Access control: only air nodes (source, motion, segmentation) may publish frames and motion
 # estimates, only tracking may publish tracks and its state, only the air's downlink may publish
-# what crosses the link (uavmot/downlink/*); every node may publish and read health.
+# what crosses the link (uavmot/downlink/*). Health: each node may publish uavmot/health only in
+# the partition named after itself (src: components/dds/include/uavmot/dds/health_partitions.hpp),
+# so no node can report as another; the readers that act on health (launch: the watchdog;
+# status; downlink: passes the air's reports on) and the viewers (view, record, foxglove) may read it all.
 # Fast DDS needs certificate paths as file:// + an absolute path.
 set -eu
 
@@ -22,7 +28,7 @@ qos_xml=${2:-$here/../bringup/qos/uavmot_qos.xml}
 [ -f "$qos_xml" ] || { echo "$0: QoS profiles file '$qos_xml' not found" >&2; exit 1; }
 mkdir -p "$1"
 out=$(cd "$1" && pwd)
-nodes="source motion segmentation tracking downlink sink"
+nodes="source motion segmentation tracking downlink sink view record foxglove launch status"
 days=3650
 
 cd "$out"
@@ -64,26 +70,38 @@ cat > governance.xml <<'EOF'
 EOF
 
 # publish / subscribe topics per node
-grant() {  # name "published topics" "subscribed topics"
+topics() {  # "topic ..." [partition]: one <publish>/<subscribe> criterion's body
+  printf '<topics>'
+  for t in $1; do printf '<topic>%s</topic>' "$t"; done
+  printf '</topics>'
+  [ -z "${2:-}" ] || printf '<partitions><partition>%s</partition></partitions>' "$2"
+}
+# name "published topics" "subscribed topics" [reads_health]: the node publishes health in its
+# own partition only; with reads_health=yes it reads every partition of it ("*").
+grant() {
   printf '    <grant name="%s">\n      <subject_name>CN=%s, O=uavmot, C=DE</subject_name>\n' "$1" "$1"
   printf '      <validity><not_before>2020-01-01T00:00:00</not_before><not_after>2120-01-01T00:00:00</not_after></validity>\n'
   printf '      <allow_rule>\n        <domains><id_range><min>0</min><max>232</max></id_range></domains>\n'
-  printf '        <publish><topics>'
-  for t in $2; do printf '<topic>%s</topic>' "$t"; done
-  printf '</topics></publish>\n        <subscribe><topics>'
-  for t in $3; do printf '<topic>%s</topic>' "$t"; done
-  printf '</topics></subscribe>\n      </allow_rule>\n      <default>DENY</default>\n    </grant>\n'
+  [ -z "$2" ] || printf '        <publish>%s</publish>\n' "$(topics "$2")"
+  printf '        <publish>%s</publish>\n' "$(topics uavmot/health "$1")"
+  [ -z "$3" ] || printf '        <subscribe>%s</subscribe>\n' "$(topics "$3")"
+  [ "${4:-}" != yes ] || printf '        <subscribe>%s</subscribe>\n' "$(topics uavmot/health '*')"
+  printf '      </allow_rule>\n      <default>DENY</default>\n    </grant>\n'
 }
+chain="uavmot/frames uavmot/motion uavmot/segmentation uavmot/tracks"
 {
   printf '<?xml version="1.0" encoding="UTF-8"?>\n<dds xmlns:xsi="http://www.w3.org/2001/XMLSchema-instance">\n  <permissions>\n'
-  grant source "uavmot/frames uavmot/health" "uavmot/health"
-  grant motion "uavmot/motion uavmot/health" "uavmot/frames uavmot/health"
-  grant segmentation "uavmot/segmentation uavmot/health" "uavmot/frames uavmot/motion uavmot/health"
-  grant tracking "uavmot/tracks uavmot/tracker_state uavmot/health" "uavmot/motion uavmot/segmentation uavmot/health"
-  grant downlink "uavmot/downlink/results uavmot/downlink/preview uavmot/health" \
-    "uavmot/frames uavmot/motion uavmot/segmentation uavmot/tracks uavmot/health"
-  grant sink "uavmot/health" \
-    "uavmot/motion uavmot/segmentation uavmot/tracks uavmot/downlink/results uavmot/downlink/preview uavmot/health"
+  grant source "uavmot/frames" ""
+  grant motion "uavmot/motion" "uavmot/frames"
+  grant segmentation "uavmot/segmentation" "uavmot/frames uavmot/motion"
+  grant tracking "uavmot/tracks uavmot/tracker_state" "uavmot/motion uavmot/segmentation"
+  grant downlink "uavmot/downlink/results uavmot/downlink/preview" "$chain" yes
+  grant sink "" "uavmot/motion uavmot/segmentation uavmot/tracks uavmot/downlink/results uavmot/downlink/preview"
+  grant view "" "$chain" yes
+  grant record "" "$chain uavmot/downlink/results uavmot/downlink/preview" yes
+  grant foxglove "" "$chain uavmot/downlink/results uavmot/downlink/preview" yes
+  grant launch "" "" yes
+  grant status "" "" yes
   printf '  </permissions>\n</dds>\n'
 } > permissions.xml
 

@@ -460,12 +460,13 @@ TEST_F(AirGround, SecurityEncryptsTheLinkAndKeepsOutsidersOutOfTheGroundStation)
   const std::string security = root_ + "/security";
   ChildProcess make({"/bin/sh", std::string(UAVMOT_SOURCE_DIR) + "/tools/make_security.sh", security}, root_ + "/make_security.log");
   ASSERT_EQ(make.wait(std::chrono::seconds(60)), 0) << make.log();
-  // A rogue: the real sink's certificate, with permissions that let it publish everything, signed
-  // by a CA of its own. Its own Fast DDS accepts them; the ground must not.
+  // A rogue: the real sink's certificate, with permissions that let it publish everything (every
+  // publish criterion, health's partitioned one included, made "*"), signed by a CA of its own.
+  // Its own Fast DDS accepts them; the ground must not.
   const std::string rogue = root_ + "/security_rogue";
   ChildProcess make_rogue({"/bin/sh", "-c",
                            "set -e; sh " + std::string(UAVMOT_SOURCE_DIR) + "/tools/make_security.sh " + rogue + " >/dev/null; cd " + rogue +
-                               "; sed 's|<publish><topics>.*</topics></publish>|<publish><topics><topic>*</topic></topics></publish>|' "
+                               "; sed 's|<publish>.*</publish>|<publish><topics><topic>*</topic></topics></publish>|' "
                                "permissions.xml > all.xml; openssl smime -sign -in all.xml -text -out all.smime -signer ca.pem -inkey ca.key; "
                                "sed -e 's|" + rogue + "/sink.pem|" + security + "/sink.pem|' -e 's|" + rogue + "/sink.key|" + security +
                                "/sink.key|' -e 's|identity_ca</name><value>file://" + rogue + "/ca.pem|identity_ca</name><value>file://" +

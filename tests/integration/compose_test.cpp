@@ -56,6 +56,7 @@ class Compose : public ::testing::Test {
   }
   std::vector<std::string> compose(std::vector<std::string> args) const {
     std::vector<std::string> argv = {"/usr/bin/podman-compose", "-p", kProject, "-f", kDocker + "/compose.yaml"};
+    for (const auto& file : overlays_) argv.insert(argv.end(), {"-f", kDocker + "/" + file});
     argv.insert(argv.end(), args.begin(), args.end());
     return argv;
   }
@@ -66,11 +67,38 @@ class Compose : public ::testing::Test {
     return output_of(argv, root_ + "/" + name + ".log");
   }
 
+  void run_and_check();
+
   std::string root_;
   std::map<std::string, std::string> env_;
+  std::vector<std::string> overlays_;  // compose files over compose.yaml, e.g. compose.security.yaml
 };
 
-TEST_F(Compose, AirAndGroundContainersOnSeparateNetworksDeliverTheResultsToTheGround) {
+TEST_F(Compose, AirAndGroundContainersOnSeparateNetworksDeliverTheResultsToTheGround) { run_and_check(); }
+
+// The same with DDS Security on (tools/make_security.sh, mounted by compose.security.yaml and
+// selected by qos_dir): the same results, and both containers had the material.
+TEST_F(Compose, WithSecurityOnTheContainersDeliverTheSameResults) {
+  const std::string security = root_ + "/security";
+  ASSERT_EQ(run({"/bin/sh", std::string(UAVMOT_SOURCE_DIR) + "/tools/make_security.sh", security}, root_ + "/make_security.log",
+                std::chrono::seconds(60)),
+            0)
+      << read_file(root_ + "/make_security.log");
+  env_["QOS_DIR"] = security;
+  overlays_ = {"compose.security.yaml"};
+  down();
+  run_and_check();
+  const std::string mounts = "{{range .Mounts}}{{.Destination}} {{end}}";
+  for (const char* service : {"ground", "air"}) {
+    const std::string container = kProject + "_" + service + "_" + "1";
+    const std::string seen = podman({"inspect", "--format", mounts, container}, std::string(service) + "_mounts");
+    EXPECT_NE(seen.find(security), std::string::npos) << service << ": " << seen;
+    const std::string cmd = podman({"inspect", "--format", "{{.Config.Cmd}}", container}, std::string(service) + "_cmd");
+    EXPECT_NE(cmd.find("qos_dir=" + security), std::string::npos) << service << ": " << cmd;
+  }
+}
+
+void Compose::run_and_check() {
   for (const char* tool : {"/usr/bin/podman", "/usr/bin/podman-compose", "/usr/sbin/debootstrap", "/usr/sbin/runc"}) {
     ASSERT_TRUE(fs::exists(tool)) << tool << " is missing: tools/install_deps.sh installs it";
   }

@@ -4,11 +4,15 @@
 
 #include <map>
 
+#include "uavmot/dds/health_partitions.hpp"
+
 namespace uavmot::dds {
 
 HealthReporter::HealthReporter(Participant& participant, std::string component, std::string stream_id,
                                std::chrono::milliseconds period)
-    : writer_(participant.make_writer<msg::ComponentHealthPubSubType>(kHealthTopic, TopicClass::Health)),
+    // In its own partition: the one its certificate may report in (health_partitions.hpp).
+    : writer_(participant.make_writer_in<msg::ComponentHealthPubSubType>(health_partition(component), kHealthTopic,
+                                                                        TopicClass::Health)),
       component_(std::move(component)),
       stream_id_(std::move(stream_id)),
       period_(period),

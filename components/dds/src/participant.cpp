@@ -145,7 +145,39 @@ fdds::Topic* Participant::topic_for(const std::string& name, fdds::TypeSupport t
   return topic;
 }
 
-fdds::DataWriter* Participant::create_writer(fdds::Topic* topic, const std::string& profile, const std::string& flow) {
+void Participant::delete_native_reader(fdds::DataReader* reader) {
+  if (subscriber_->delete_datareader(reader) == ReturnCode_t::RETCODE_OK) return;
+  for (auto& [partition, subscriber] : partition_subscribers_) {
+    if (subscriber->delete_datareader(reader) == ReturnCode_t::RETCODE_OK) return;
+  }
+}
+
+fdds::Publisher* Participant::publisher_for(const std::string& partition) {
+  if (partition.empty()) return publisher_;
+  auto& publisher = partition_publishers_[partition];
+  if (!publisher) {
+    fdds::PublisherQos qos = participant_->get_default_publisher_qos();
+    qos.partition().push_back(partition.c_str());
+    publisher = participant_->create_publisher(qos);
+    if (!publisher) throw InputError("cannot create a DDS publisher for partition '" + partition + "'");
+  }
+  return publisher;
+}
+
+fdds::Subscriber* Participant::subscriber_for(const std::string& partition) {
+  if (partition.empty()) return subscriber_;
+  auto& subscriber = partition_subscribers_[partition];
+  if (!subscriber) {
+    fdds::SubscriberQos qos = participant_->get_default_subscriber_qos();
+    qos.partition().push_back(partition.c_str());
+    subscriber = participant_->create_subscriber(qos);
+    if (!subscriber) throw InputError("cannot create a DDS subscriber for partition '" + partition + "'");
+  }
+  return subscriber;
+}
+
+fdds::DataWriter* Participant::create_writer(fdds::Topic* topic, const std::string& profile, const std::string& flow,
+                                             const std::string& partition) {
   fdds::DataWriterQos qos;
   if (publisher_->get_datawriter_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
     throw InputError("writer profile '" + profile + "' is not in '" + options_.profiles_file + "'");
@@ -157,18 +189,24 @@ fdds::DataWriter* Participant::create_writer(fdds::Topic* topic, const std::stri
     qos.publish_mode().kind = fdds::ASYNCHRONOUS_PUBLISH_MODE;
     qos.publish_mode().flow_controller_name = limit->name.c_str();
   }
-  auto* writer = publisher_->create_datawriter(topic, qos);
-  if (!writer) throw InputError("cannot create a writer on '" + topic->get_name() + "' with profile '" + profile + "'");
+  auto* writer = publisher_for(partition)->create_datawriter(topic, qos);
+  if (!writer) {
+    throw InputError("cannot create a writer on '" + topic->get_name() + "' with profile '" + profile + "'" +
+                     (partition.empty() ? "" : " in partition '" + partition + "'") + " (refused by access control?)");
+  }
   return writer;
 }
 
-fdds::DataReader* Participant::create_reader(fdds::Topic* topic, const std::string& profile) {
+fdds::DataReader* Participant::create_reader(fdds::Topic* topic, const std::string& profile, const std::string& partition) {
   fdds::DataReaderQos qos;
   if (subscriber_->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
     throw InputError("reader profile '" + profile + "' is not in '" + options_.profiles_file + "'");
   }
-  auto* reader = subscriber_->create_datareader(topic, qos);
-  if (!reader) throw InputError("cannot create a reader on '" + topic->get_name() + "' with profile '" + profile + "'");
+  auto* reader = subscriber_for(partition)->create_datareader(topic, qos);
+  if (!reader) {
+    throw InputError("cannot create a reader on '" + topic->get_name() + "' with profile '" + profile + "'" +
+                     (partition.empty() ? "" : " in partition '" + partition + "'") + " (refused by access control?)");
+  }
   return reader;
 }
 

@@ -2,6 +2,8 @@
 
 #include <cstdlib>
 #include <memory>
+#include <utility>
+#include <vector>
 
 #include <spdlog/spdlog.h>
 
@@ -9,6 +11,7 @@
 #include "uavmot/core/app.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/core/shutdown.hpp"
+#include "uavmot/dds/health_partitions.hpp"
 #include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/downlink/results_relay.hpp"
 
@@ -66,9 +69,17 @@ int run_downlink(DownlinkOptions o) {
 
   dds::HealthReporter health(link, "downlink", o.stream_id);
   ResultsRelay results(air, link, o.link.wait_subscribers, health, o.resume);
-  auto air_health = air.make_reader<msg::ComponentHealthPubSubType>(dds::kHealthTopic, dds::TopicClass::Health);
-  auto link_health = link.make_writer<msg::ComponentHealthPubSubType>(dds::kHealthTopic, dds::TopicClass::Health);
-  health.watch(*air_health);
+  // One reader per air component's partition: only a component's own reports are passed on as its.
+  std::vector<std::pair<std::string, std::unique_ptr<dds::TopicReader<msg::ComponentHealthPubSubType>>>> air_health;
+  for (const char* component : {"source", "motion", "segmentation", "tracking"}) {
+    air_health.emplace_back(dds::health_partition(component),
+                            air.make_reader_in<msg::ComponentHealthPubSubType>(dds::health_partition(component), dds::kHealthTopic,
+                                                                               dds::TopicClass::Health));
+  }
+  // The air's reports go on in the downlink's partition, the one its certificate may report in.
+  auto link_health = link.make_writer_in<msg::ComponentHealthPubSubType>(dds::health_partition("downlink"), dds::kHealthTopic,
+                                                                         dds::TopicClass::Health);
+  for (const auto& [partition, reader] : air_health) health.watch(*reader);
   health.watch(*link_health);
   std::unique_ptr<PreviewRelay> preview;
   if (o.preview.rate_hz > 0) {
@@ -83,9 +94,12 @@ int run_downlink(DownlinkOptions o) {
   while (!shutdown_requested() && results.streams_ended() < o.streams) {
     const bool any = results.pump();
     msg::ComponentHealth report;
-    while (air_health->take(report)) {
-      if (report.stream_id().to_string() == "*") report.stream_id(o.stream_id);
-      link_health->write(report);
+    for (auto& [partition, reader] : air_health) {
+      while (reader->take(report)) {
+        if (!dds::health_report_trusted(partition, report.component_name().to_string())) continue;
+        if (report.stream_id().to_string() == "*") report.stream_id(o.stream_id);
+        link_health->write(report);
+      }
     }
     if (preview) preview->pump(health);
     results.log_link_changes();

@@ -30,6 +30,19 @@ std::string number(double v) {
   return s.str();
 }
 
+// The watchdog's QoS profiles: the launcher's own in the profile's qos_dir (with security on, its
+// identity, which may read every component's health); empty (the default file) without a qos_dir.
+std::string watchdog_profiles(const launch::Profile& resolved) {
+  const auto it = resolved.variables.find("qos_dir");
+  if (it == resolved.variables.end() || it->second.empty()) return "";
+  const fs::path file = fs::path(it->second) / "launch.xml";
+  if (!fs::exists(file)) {
+    throw InputError("qos_dir '" + it->second + "' has no launch.xml (the launcher's identity for its watchdog): make it "
+                     "again with tools/make_security.sh");
+  }
+  return fs::absolute(file).string();
+}
+
 int launch_main(int argc, char** argv) {
   std::string profile_file, input, out_dir = "out/launch";
   std::vector<std::string> sets;
@@ -84,14 +97,14 @@ int launch_main(int argc, char** argv) {
         return kExitOk;
       }
       // The watchdog reads uavmot/health where the processes with a hang_timeout report.
-      std::vector<std::vector<std::string>> watched;
+      std::vector<launch::DdsHealthMonitor::Watched> watched;
       for (const auto& p : resolved.processes) {
         if (p.hang_timeout_s <= 0) continue;
-        watched.push_back(p.args);
-        if (p.common_args) watched.back().insert(watched.back().end(), resolved.common_args.begin(), resolved.common_args.end());
+        watched.push_back({p.command, p.args});
+        if (p.common_args) watched.back().args.insert(watched.back().args.end(), resolved.common_args.begin(), resolved.common_args.end());
       }
       std::unique_ptr<launch::DdsHealthMonitor> health;
-      if (!watched.empty()) health = std::make_unique<launch::DdsHealthMonitor>(watched);
+      if (!watched.empty()) health = std::make_unique<launch::DdsHealthMonitor>(watched, watchdog_profiles(resolved));
       supervisor.set_health_monitor(health.get());
       std::error_code ec;
       fs::remove_all(run_dir, ec);

@@ -142,6 +142,7 @@ Profile resolve(const Profile& profile, const std::map<std::string, std::string>
     p.respawn_delay = substitute(p.respawn_delay, all, where);
     p.respawn_delay_s = parse_seconds(p.respawn_delay, where + ": respawn_delay");
   }
+  out.variables = all;
   return out;
 }
 

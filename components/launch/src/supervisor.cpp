@@ -147,7 +147,7 @@ class Runner {
     health_->poll();
     for (auto& c : children_) {
       if (c.pid <= 0 || c.hung || c.spec->hang_timeout_s <= 0.0) continue;
-      const auto silent = health_->silent_s(c.pid);
+      const auto silent = health_->silent_s(c.pid, c.spec->command);
       if (!silent || *silent < c.spec->hang_timeout_s) continue;
       char line[160];
       std::snprintf(line, sizeof(line), "%s (pid %d) hangs: no health report for %.1f s (hang_timeout %.1f s); killing it",

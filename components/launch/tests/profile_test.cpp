@@ -130,6 +130,8 @@ TEST(LaunchProfile, DefaultsMayNameOtherVariables) {
   EXPECT_EQ(resolve(p, {{"profile_dir", "/b"}}).processes.at(0).env.at("Q"), "/b/qos/a.xml");
   // A value given on the command line is taken as it is.
   EXPECT_EQ(resolve(p, {{"profile_dir", "/b"}, {"qos_dir", "/sec"}}).processes.at(0).env.at("Q"), "/sec/a.xml");
+  // The launcher takes its own identity from the resolved qos_dir (launch_main.cpp).
+  EXPECT_EQ(resolve(p, {{"profile_dir", "/b"}}).variables.at("qos_dir"), "/b/qos");
 }
 
 TEST(LaunchProfile, TypoIsNamedWithItsLine) {

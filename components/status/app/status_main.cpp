@@ -12,10 +12,13 @@
 #include <cstdio>
 #include <iostream>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #include "healthPubSubTypes.h"
 #include "uavmot/core/app.hpp"
 #include "uavmot/core/shutdown.hpp"
+#include "uavmot/dds/health_partitions.hpp"
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/dds/node_support.hpp"
 #include "uavmot/status/health_table.hpp"
@@ -78,18 +81,29 @@ int status_main(int argc, char** argv) {
       dds::finalize(node, "status");
       install_shutdown_handler();
       dds::Participant participant(node.dds);
-      auto reader = participant.make_reader<msg::ComponentHealthPubSubType>(dds::kHealthTopic, dds::TopicClass::Health);
+      // One reader per component's partition: a report counts only as its partition's component's
+      // (with security on, a node may report in its own partition only; health_partitions.hpp).
+      std::vector<std::pair<std::string, std::unique_ptr<dds::TopicReader<msg::ComponentHealthPubSubType>>>> readers;
+      for (const auto& component : dds::health_components()) {
+        const std::string partition = dds::health_partition(component);
+        readers.emplace_back(partition, participant.make_reader_in<msg::ComponentHealthPubSubType>(partition, dds::kHealthTopic,
+                                                                                                   dds::TopicClass::Health));
+      }
       status::HealthTable table(stale_s);
       const bool redraw = !json && !once && ::isatty(STDOUT_FILENO);
 
       auto collect = [&](std::chrono::steady_clock::time_point until) {
         msg::ComponentHealth sample;
         while (!shutdown_requested()) {
-          while (reader->take(sample)) table.update(from_msg(sample));
+          for (auto& [partition, reader] : readers) {
+            while (reader->take(sample)) {
+              if (dds::health_report_trusted(partition, sample.component_name().to_string())) table.update(from_msg(sample));
+            }
+          }
           const auto left = until - std::chrono::steady_clock::now();
           if (left <= std::chrono::milliseconds(0)) break;
-          reader->wait_for_data(std::min(std::chrono::duration_cast<std::chrono::milliseconds>(left) + std::chrono::milliseconds(1),
-                                         std::chrono::milliseconds(100)));
+          std::this_thread::sleep_for(std::min(std::chrono::duration_cast<std::chrono::milliseconds>(left) + std::chrono::milliseconds(1),
+                                               std::chrono::milliseconds(50)));
         }
       };
       auto print = [&]() {

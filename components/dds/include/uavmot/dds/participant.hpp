@@ -58,8 +58,25 @@ class Participant {
   std::unique_ptr<TopicWriter<PubSubType>> make_writer(const std::string& topic_name, TopicClass topic_class,
                                                        const std::string& flow = "") {
     auto* topic = topic_for(topic_name, eprosima::fastdds::dds::TypeSupport(new PubSubType()));
-    auto* writer = create_writer(topic, writer_profile(topic_class, options_.mode), flow);
+    auto* writer = create_writer(topic, writer_profile(topic_class, options_.mode), flow, "");
     return std::make_unique<TopicWriter<PubSubType>>(writer, topic_name);
+  }
+  // A writer in DDS partition `partition` (health reports: their component's, health_partitions.hpp).
+  // Throws InputError when access control refuses it.
+  template <class PubSubType>
+  std::unique_ptr<TopicWriter<PubSubType>> make_writer_in(const std::string& partition, const std::string& topic_name,
+                                                          TopicClass topic_class) {
+    auto* topic = topic_for(topic_name, eprosima::fastdds::dds::TypeSupport(new PubSubType()));
+    auto* writer = create_writer(topic, writer_profile(topic_class, options_.mode), "", partition);
+    return std::make_unique<TopicWriter<PubSubType>>(writer, topic_name);
+  }
+  // A reader of partition `partition` only ("*": all of them).
+  template <class PubSubType>
+  std::unique_ptr<TopicReader<PubSubType>> make_reader_in(const std::string& partition, const std::string& topic_name,
+                                                          TopicClass topic_class) {
+    auto* topic = topic_for(topic_name, eprosima::fastdds::dds::TypeSupport(new PubSubType()));
+    auto* reader = create_reader(topic, reader_profile(topic_class, options_.mode), partition);
+    return std::make_unique<TopicReader<PubSubType>>(reader, topic_name);
   }
 
   template <class PubSubType>
@@ -67,30 +84,39 @@ class Participant {
     return make_reader<PubSubType>(topic_name, reader_profile(topic_class, options_.mode));
   }
   // With a named reader profile of the profiles file (e.g. the recorder's frames_record_reader).
+  // Health readers read every component's partition (health_partitions.hpp).
   template <class PubSubType>
   std::unique_ptr<TopicReader<PubSubType>> make_reader(const std::string& topic_name, const std::string& profile) {
     auto* topic = topic_for(topic_name, eprosima::fastdds::dds::TypeSupport(new PubSubType()));
-    auto* reader = create_reader(topic, profile);
+    auto* reader = create_reader(topic, profile, topic_name == kHealthTopic ? "*" : "");
     return std::make_unique<TopicReader<PubSubType>>(reader, topic_name);
   }
   // Deletes a reader made here before the participant goes (readers that come and go, e.g. the
   // Foxglove bridge's, which reads a topic only while a viewer watches it).
   template <class PubSubType>
   void delete_reader(std::unique_ptr<TopicReader<PubSubType>> reader) {
-    if (reader) subscriber_->delete_datareader(reader->native());
+    if (reader) delete_native_reader(reader->native());
   }
 
  private:
   eprosima::fastdds::dds::Topic* topic_for(const std::string& name, eprosima::fastdds::dds::TypeSupport type);
+  // `partition` "": the default partition.
   eprosima::fastdds::dds::DataWriter* create_writer(eprosima::fastdds::dds::Topic* topic, const std::string& profile,
-                                                    const std::string& flow);
-  eprosima::fastdds::dds::DataReader* create_reader(eprosima::fastdds::dds::Topic* topic, const std::string& profile);
+                                                    const std::string& flow, const std::string& partition);
+  eprosima::fastdds::dds::DataReader* create_reader(eprosima::fastdds::dds::Topic* topic, const std::string& profile,
+                                                    const std::string& partition);
+  void delete_native_reader(eprosima::fastdds::dds::DataReader* reader);  // from whichever subscriber made it
+  // Partitions are publisher/subscriber QoS in DDS: one of each per partition, made when first needed.
+  eprosima::fastdds::dds::Publisher* publisher_for(const std::string& partition);
+  eprosima::fastdds::dds::Subscriber* subscriber_for(const std::string& partition);
 
   DdsOptions options_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
   eprosima::fastdds::dds::Publisher* publisher_ = nullptr;
   eprosima::fastdds::dds::Subscriber* subscriber_ = nullptr;
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
+  std::map<std::string, eprosima::fastdds::dds::Publisher*> partition_publishers_;
+  std::map<std::string, eprosima::fastdds::dds::Subscriber*> partition_subscribers_;
 };
 
 }  // namespace uavmot::dds

@@ -1,12 +1,15 @@
 #pragma once
-// The launcher's watchdog view of uavmot/health: one reader per DDS setting (domain, transport,
-// discovery server, profiles) that the watched processes report on, taken from their own command
-// lines, so every profile (one host, air and ground) is watched where its processes report.
+// The launcher's watchdog view of uavmot/health: readers on every DDS setting (domain, transport,
+// discovery server) that the watched processes report on, taken from their own command lines, so
+// every profile (one host, air and ground) is watched where its processes report. One reader per
+// watched component's partition: a report counts only for the component that may send it
+// (health_partitions.hpp), so with security on no node can keep another's watchdog quiet.
 
 #include <chrono>
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "healthPubSubTypes.h"
@@ -17,17 +20,22 @@ namespace uavmot::launch {
 
 class DdsHealthMonitor final : public HealthMonitor {
  public:
-  // `command_lines`: the arguments (without the program) of every process to watch.
-  explicit DdsHealthMonitor(const std::vector<std::vector<std::string>>& command_lines);
+  struct Watched {
+    std::string component;          // the process's command, e.g. "motion"
+    std::vector<std::string> args;  // its arguments (without the program)
+  };
+  // `profiles_file`: the launcher's own QoS profiles (its identity with security on); empty: the
+  // processes' default.
+  DdsHealthMonitor(const std::vector<Watched>& watched, const std::string& profiles_file);
   ~DdsHealthMonitor() override;
 
   void poll() override;
-  std::optional<double> silent_s(pid_t pid) const override;
+  std::optional<double> silent_s(pid_t pid, const std::string& component) const override;
 
  private:
   struct Endpoint {
     std::unique_ptr<dds::Participant> participant;
-    std::unique_ptr<dds::TopicReader<msg::ComponentHealthPubSubType>> reader;
+    std::map<std::string, std::unique_ptr<dds::TopicReader<msg::ComponentHealthPubSubType>>> readers;  // by partition
   };
   struct LastReport {
     std::chrono::steady_clock::time_point arrived;
@@ -35,7 +43,7 @@ class DdsHealthMonitor final : public HealthMonitor {
   };
   std::string host_;
   std::vector<Endpoint> endpoints_;
-  std::map<pid_t, LastReport> last_;
+  std::map<std::pair<pid_t, std::string>, LastReport> last_;  // by pid and component
 };
 
 }  // namespace uavmot::launch

@@ -37,7 +37,7 @@ struct ProcessSpec {
 struct Profile {
   std::string file;
   std::string description;
-  std::map<std::string, std::string> variables;  // defaults for ${name}; --set overrides
+  std::map<std::string, std::string> variables;  // defaults for ${name}; --set overrides; after resolve(): the values used
   std::vector<std::string> common_args;
   std::vector<ProcessSpec> processes;
 };

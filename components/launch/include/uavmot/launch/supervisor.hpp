@@ -17,15 +17,16 @@
 
 namespace uavmot::launch {
 
-// What the watchdog knows of the health topic (uavmot/health, docs/status.md), per process id.
+// What the watchdog knows of the health topic (uavmot/health, docs/status.md), per process id
+// and component (the process's command: only the component itself may report as it).
 class HealthMonitor {
  public:
   virtual ~HealthMonitor() = default;
   // Takes the reports that arrived since the last call.
   virtual void poll() = 0;
-  // Seconds since the last report of `pid` arrived; nullopt before its first report, and after
-  // it reported that it finished or failed (it stops reporting on purpose then).
-  virtual std::optional<double> silent_s(pid_t pid) const = 0;
+  // Seconds since the last report of `component` with `pid` arrived; nullopt before its first
+  // report, and after it reported that it finished or failed (it stops reporting on purpose then).
+  virtual std::optional<double> silent_s(pid_t pid, const std::string& component) const = 0;
 };
 
 struct SupervisorOptions {
