@@ -16,7 +16,7 @@ MotionOptions load_motion_options(const ConfigNode& node) {
                     "min_track_frames", "position_sigma_px", "prior_weight", "moving_sigma_factor",
                     "min_moving_speed_px", "min_moving_speed_mps", "scene_noise_factor", "scene_noise_max_px", "confirm_frames", "release_ratio", "parallax_rejection", "parallax_both_sides",
                     "parallax_min_support", "parallax_min_support_fraction", "parallax_min_share", "parallax_min_spread", "parallax_stable_frames",
-                    "parallax_stable_angle_deg", "parallax_across_sigma", "parallax_across_floor_px", "parallax_cap_factor",
+                    "parallax_stable_angle_deg", "parallax_across_sigma", "parallax_across_floor_px", "parallax_max_height_ratio", "parallax_cap_factor", "parallax_min_support_density",
                     "parallax_ransac_iterations"});
   node.read("max_features", o.max_features, 10, 100000);
   node.read("cell_size_px", o.cell_size_px, 0, 1024);
@@ -72,7 +72,9 @@ MotionOptions load_motion_options(const ConfigNode& node) {
   node.read("parallax_stable_angle_deg", o.parallax_stable_angle_deg, 0.0, 90.0);
   node.read("parallax_across_sigma", o.parallax_across_sigma, 0.0, 100.0);
   node.read("parallax_across_floor_px", o.parallax_across_floor_px, 0.0, 100.0);
+  node.read("parallax_max_height_ratio", o.parallax_max_height_ratio, 0.0, 0.9);
   node.read("parallax_cap_factor", o.parallax_cap_factor, 0.0, 1000.0);
+  node.read("parallax_min_support_density", o.parallax_min_support_density, 0.0, 1e6);
   node.read("parallax_ransac_iterations", o.parallax_ransac_iterations, 1, 100000);
   if (o.lk_window_px % 2 == 0) node.fail("lk_window_px", "must be odd, got " + std::to_string(o.lk_window_px));
   if (o.corner_block_size % 2 == 0) {
@@ -143,6 +145,8 @@ void validate(const MotionOptions& o) {
   require(o.parallax_stable_angle_deg >= 0.0 && o.parallax_stable_angle_deg <= 90.0, "parallax_stable_angle_deg must be in [0, 90]");
   require(o.parallax_across_sigma >= 0.0 && o.parallax_across_floor_px >= 0.0 && o.parallax_cap_factor >= 0.0,
           "parallax tolerances must be >= 0");
+  require(o.parallax_max_height_ratio >= 0.0 && o.parallax_max_height_ratio < 1.0,
+          "parallax_max_height_ratio (tallest structure / flight height) must be in [0, 1)");
   require(o.parallax_ransac_iterations >= 1, "parallax_ransac_iterations must be >= 1");
 }
 
