@@ -4,9 +4,10 @@
 // the default configuration and with `motion.parallax_rejection: false`, scored by `uavmot eval`
 // (false alarms on static structure from gt/structures.csv).
 //
-// Figures on 2026-11-25, 100 frames (default / without the parallax step):
-//   seed 100: correct 86.88 / 86.69 %, false alarms on structure 12.45 / 51.77 per frame
-//   seed 101: correct 87.72 / 87.93 %, false alarms on structure 12.34 / 38.18 per frame
+// Figures (100 frames, default / without the parallax step): before session 12, urban3d seed 100
+// 12.45 / 51.77 and seed 101 12.34 / 38.18 false alarms on structure per frame. Session 12 (the
+// epipole fitted on what structure could do, weighted by how firmly each residual fixes its line;
+// the cap from the flight height; stability of lines): printed by this test, see docs/motion.md.
 // Issue 17's target (<= 0.1 per frame on structure) is not met yet; docs/motion.md says what is left.
 
 #include <gtest/gtest.h>
@@ -54,19 +55,26 @@ TEST(ChainStructureScenario, ParallaxStepKeepsStructureOffTheTracksAndVehiclesOn
   const std::string dir = fresh_dir("chain_structure_scenario");
   const std::string no_parallax = dir + "/no_parallax.yaml";
   std::ofstream(no_parallax) << "motion:\n  parallax_rejection: false\n";
-  for (const int seed : {100, 101}) {
-    const std::string seq = dir + "/urban3d-" + std::to_string(seed);
-    run({binary("uavmot"), "sim", "--preset", "urban3d", "--seed", std::to_string(seed), "--frames", "100", "--out", seq,
+  struct Case {
+    const char* preset;
+    int seed;
+    double min_correct;
+  };
+  // Oblique views lose more vehicles to the far, coarse part of the image (67 % on seeds 100-104).
+  for (const Case c : {Case{"urban3d", 100, 0.85}, Case{"urban3d", 101, 0.85}, Case{"oblique", 100, 0.64}}) {
+    const std::string name = std::string(c.preset) + "-" + std::to_string(c.seed);
+    const std::string seq = dir + "/" + name;
+    run({binary("uavmot"), "sim", "--preset", c.preset, "--seed", std::to_string(c.seed), "--frames", "100", "--out", seq,
          "--quiet"},
         seq + ".sim.log");
     const Score with = score(seq, seq + "-out", "");
     const Score without = score(seq, seq + "-out-no-parallax", no_parallax);
-    std::printf("urban3d seed %d: correct %.2f / %.2f %%, on structure %.2f / %.2f per frame (default / no parallax step)\n",
-                seed, 100 * with.correct, 100 * without.correct, with.on_structure_per_frame, without.on_structure_per_frame);
-    EXPECT_LE(with.on_structure_per_frame, 14.0) << "seed " << seed;
-    EXPECT_LE(with.on_structure_per_frame, 0.4 * without.on_structure_per_frame) << "seed " << seed;
-    EXPECT_GE(with.correct, 0.85) << "seed " << seed;
-    EXPECT_GE(with.correct, without.correct - 0.01) << "seed " << seed;
+    std::printf("%s: correct %.2f / %.2f %%, on structure %.2f / %.2f per frame (default / no parallax step)\n", name.c_str(),
+                100 * with.correct, 100 * without.correct, with.on_structure_per_frame, without.on_structure_per_frame);
+    EXPECT_LE(with.on_structure_per_frame, 10.0) << name;
+    EXPECT_LE(with.on_structure_per_frame, 0.25 * without.on_structure_per_frame) << name;
+    EXPECT_GE(with.correct, c.min_correct) << name;
+    EXPECT_GE(with.correct, without.correct - 0.02) << name;
   }
 }
 

@@ -45,6 +45,14 @@ TrackedFeature to_output(const LiveFeature& f) {
   return out;
 }
 
+// A feature as the parallax filter sees it, with the ground's image motion at its position under
+// this frame's homography (what bounds the parallax of any static point there).
+ParallaxSample parallax_sample(const LiveFeature& f, const Homography& h) {
+  const cv::Point2d p(f.position);
+  const cv::Point2d moved = apply_homography(h, p);
+  return {f.position, f.velocity.velocity, f.velocity.sigma, std::hypot(moved.x - p.x, moved.y - p.y)};
+}
+
 }  // namespace
 
 struct PreparedFrame::Data {
@@ -268,7 +276,7 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   samples.reserve(survivors.size());
   for (auto& f : survivors) {
     if (f.velocity.available) f.velocity.velocity -= flow.field(f.position);
-    if (f.velocity.available && f.history.size() >= o.min_track_frames) samples.push_back({f.position, f.velocity.velocity, f.velocity.sigma});
+    if (f.velocity.available && f.history.size() >= o.min_track_frames) samples.push_back(parallax_sample(f, h));
   }
   // Static 3-D structure moves along its epipolar line: that part is no independent motion. The
   // reported velocity stays relative to the ground plane; only the decision sees what is left.
@@ -280,7 +288,7 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
     const LiveFeature& f = survivors[k];
     decided[k] = f.velocity;
     if (!f.velocity.available) continue;
-    decided[k].velocity = parallax_.independent_velocity({f.position, f.velocity.velocity, f.velocity.sigma});
+    decided[k].velocity = parallax_.independent_velocity(parallax_sample(f, h));
     if (f.history.size() >= o.min_track_frames) speeds.push_back(std::hypot(decided[k].velocity[0], decided[k].velocity[1]));
   }
   const double floor_px = scene_noise_floor(std::move(speeds), o);

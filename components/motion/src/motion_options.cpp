@@ -93,6 +93,8 @@ void validate(const MotionOptions& o) {
   require(o.parallax_stable_angle_deg >= 0.0 && o.parallax_stable_angle_deg <= 90.0, "parallax_stable_angle_deg must be in [0, 90]");
   require(o.parallax_across_sigma >= 0.0 && o.parallax_across_floor_px >= 0.0 && o.parallax_cap_factor >= 0.0,
           "parallax tolerances must be >= 0");
+  require(o.parallax_max_height_ratio >= 0.0 && o.parallax_max_height_ratio < 1.0,
+          "parallax_max_height_ratio (tallest structure / flight height) must be in [0, 1)");
   require(o.parallax_ransac_iterations >= 1, "parallax_ransac_iterations must be >= 1");
 }
 

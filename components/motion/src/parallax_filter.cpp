@@ -47,8 +47,15 @@ constexpr double kKeepMargin = 1.1;
 
 struct Support {
   int count = 0;
-  int side = 1;  // 0: both sides
+  int side = 1;        // 0: both sides
+  double score = 0.0;  // the supporters' weights (direction_weight): what hypotheses compete on
 };
+
+// How firmly a residual fixes the direction of its line: 0 for one barely above its tolerance
+// (it lies within the tolerance of almost any epipole), towards 1 for one many times above it.
+// Counting every supporter alike let the many small residuals of low structure and noise outvote
+// the tall structure, and the epipole settled 20 deg off the camera's direction of travel.
+double direction_weight(double along, double tolerance) { return along > tolerance ? 1.0 - tolerance / along : 0.0; }
 
 bool on_side(int sample_side, int model_side) { return sample_side != 0 && (model_side == 0 || sample_side == model_side); }
 
@@ -56,6 +63,7 @@ bool on_side(int sample_side, int model_side) { return sample_side != 0 && (mode
 Support count_support(const cv::Vec3d& e, const std::vector<cv::Point2d>& points, const std::vector<ParallaxSample>& s,
                       const std::vector<size_t>& significant, const MotionOptions& o, std::vector<int>* sides) {
   int plus = 0, minus = 0;
+  double plus_score = 0.0, minus_score = 0.0;
   if (sides) sides->assign(significant.size(), 0);
   for (size_t k = 0; k < significant.size(); ++k) {
     const ParallaxSample& sample = s[significant[k]];
@@ -63,18 +71,42 @@ Support count_support(const cv::Vec3d& e, const std::vector<cv::Point2d>& points
     if (u[0] == 0.0 && u[1] == 0.0) continue;
     const double along = sample.velocity.dot(u);
     const double across = std::abs(sample.velocity[0] * u[1] - sample.velocity[1] * u[0]);
-    if (across > o.parallax_across_sigma * sample.sigma + o.parallax_across_floor_px || std::abs(along) <= across) continue;
+    const double tolerance = o.parallax_across_sigma * sample.sigma + o.parallax_across_floor_px;
+    if (across > tolerance || std::abs(along) <= across) continue;
     const int side = along > 0 ? 1 : -1;
     (side > 0 ? plus : minus) += 1;
+    (side > 0 ? plus_score : minus_score) += direction_weight(std::abs(along), tolerance);
     if (sides) (*sides)[k] = side;
   }
   // The homography fits the dominant plane, which on real flights lies between the ground and the
   // roofs and treetops: structure sits on both sides of it, so both sides count.
-  if (o.parallax_both_sides) return Support{plus + minus, 0};
-  return plus >= minus ? Support{plus, 1} : Support{minus, -1};
+  if (o.parallax_both_sides) return Support{plus + minus, 0, plus_score + minus_score};
+  return plus_score >= minus_score ? Support{plus, 1, plus_score} : Support{minus, -1, minus_score};
+}
+
+// How far the epipolar lines of two (normalised) epipoles differ: the median over a 3 x 3 grid of
+// image points of the angle between the lines through each point, in degrees (sign-blind).
+double median_line_turn_deg(const cv::Vec3d& a, const cv::Vec3d& b) {
+  std::vector<double> turns;
+  for (int gy = -1; gy <= 1; ++gy) {
+    for (int gx = -1; gx <= 1; ++gx) {
+      const cv::Point2f p(0.4f * static_cast<float>(gx), 0.4f * static_cast<float>(gy));
+      const cv::Vec2d ua = epipolar_direction(a, p), ub = epipolar_direction(b, p);
+      if ((ua[0] == 0.0 && ua[1] == 0.0) || (ub[0] == 0.0 && ub[1] == 0.0)) continue;
+      turns.push_back(std::acos(std::min(1.0, std::abs(ua.dot(ub)))) * 180.0 / CV_PI);
+    }
+  }
+  if (turns.empty()) return 180.0;
+  std::nth_element(turns.begin(), turns.begin() + static_cast<long>(turns.size() / 2), turns.end());
+  return turns[turns.size() / 2];
 }
 
 }  // namespace
+
+double parallax_cap(const ParallaxSample& sample, const MotionOptions& options) {
+  const double r = options.parallax_max_height_ratio;
+  return r / (1.0 - r) * sample.ground_flow_px;
+}
 
 cv::Vec2d epipolar_direction(const cv::Vec3d& epipole, const cv::Point2f& point) {
   const cv::Vec3d e = canonical(epipole);
@@ -97,6 +129,7 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
   for (size_t i = 0; i < samples.size(); ++i) {
     const double speed = std::hypot(samples[i].velocity[0], samples[i].velocity[1]);
     if (!std::isfinite(speed) || speed <= std::max(o.parallax_across_sigma * samples[i].sigma, o.parallax_across_floor_px)) continue;
+    if (speed > parallax_cap(samples[i], o)) continue;  // faster than any structure here: no say on the epipole
     significant.push_back(i);
     points.push_back(norm.point(samples[i].position));
   }
@@ -129,12 +162,12 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
     const cv::Vec3d e = canonical(lines[a].cross(lines[b]));
     if (e == cv::Vec3d(0, 0, 0)) continue;
     const Support s = count_support(e, points, samples, significant, o, nullptr);
-    if (s.count > new_best.count) {
+    if (s.score > new_best.score) {
       new_best = s;
       new_e = e;
     }
   }
-  if (new_best.count > kKeepMargin * kept.count) {
+  if (new_best.score > kKeepMargin * kept.score) {
     best = new_best;
     best_e = new_e;
   }
@@ -146,13 +179,16 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
   cv::Matx33d normal = cv::Matx33d::zeros();
   for (size_t k = 0; k < significant.size(); ++k) {
     if (!on_side(sides[k], best.side)) continue;
-    normal += lines[k] * lines[k].t();
+    const ParallaxSample& sample = samples[significant[k]];
+    const double speed = std::hypot(sample.velocity[0], sample.velocity[1]);
+    const double w = direction_weight(speed, o.parallax_across_sigma * sample.sigma + o.parallax_across_floor_px);
+    normal += w * w * (lines[k] * lines[k].t());
   }
   cv::Mat eigenvalues, eigenvectors;
   cv::eigen(cv::Mat(normal), eigenvalues, eigenvectors);
   const cv::Vec3d refined = canonical({eigenvectors.at<double>(2, 0), eigenvectors.at<double>(2, 1), eigenvectors.at<double>(2, 2)});
   const Support refined_support = count_support(refined, points, samples, significant, o, nullptr);
-  if (refined_support.count >= best.count) {
+  if (refined_support.score >= best.score) {
     best = refined_support;
     best_e = refined;
     count_support(best_e, points, samples, significant, o, &sides);
@@ -188,18 +224,21 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
   model_.support = best.count;
   model_.spread_px = std::sqrt(std::max(0.0, smaller));
   model_.cap_px = o.parallax_cap_factor * median_along;
-  // Stable: the same epipole (angle between the normalised vectors) and side as last frame.
-  // Near infinity the representative's sign flips with noise, and the side with it: compare where
-  // structure moves at the image centre instead.
+  // Stable: the same epipolar lines and side as last frame. Lines, not the epipole's 3-vector: an
+  // epipole near infinity (a camera flying level) jumps between far left and far right of the
+  // image with noise while its lines barely turn. Median over a grid of points, so that the lines
+  // near a finite epipole (which turn fast with it) do not decide alone.
   const cv::Vec2d was = epipolar_direction(previous_n, cv::Point2f(0, 0)) * static_cast<double>(previous.side);
   const cv::Vec2d is = epipolar_direction(best_e, cv::Point2f(0, 0)) * static_cast<double>(best.side);
-  const double cos_angle = std::abs(previous_n.dot(best_e));
   const bool same = previous.support > 0 && (o.parallax_both_sides || was.dot(is) > 0.0) &&
-                    cos_angle >= std::cos(o.parallax_stable_angle_deg * CV_PI / 180.0);
+                    median_line_turn_deg(previous_n, best_e) <= o.parallax_stable_angle_deg;
   model_.stable_frames = same ? previous.stable_frames + 1 : 1;
 
   const double min_side = std::min(image_size.width, image_size.height);
-  model_.valid = model_.support >= o.parallax_min_support &&
+  // Structure covers the scene with texture; traffic on a few roads gives few supporters for the
+  // area, however well they line up (a road along the flight line, cars slower than the cap).
+  const double megapixels = static_cast<double>(image_size.area()) * 1e-6;
+  model_.valid = model_.support >= o.parallax_min_support && model_.support >= o.parallax_min_support_density * megapixels &&
                  model_.support >= o.parallax_min_share * static_cast<double>(samples.size()) &&
                  model_.support >= o.parallax_min_support_fraction * static_cast<double>(significant.size()) &&
                  model_.spread_px >= o.parallax_min_spread * min_side && model_.stable_frames >= o.parallax_stable_frames;
@@ -218,7 +257,9 @@ cv::Vec2d ParallaxFilter::independent_velocity(const ParallaxSample& sample) con
   // The wrong side of the line, or beyond the cap (no structure of this scene moves so fast): the
   // whole velocity is the point's own. Up to the cap, motion along the line is what a static point
   // of some height does.
-  if (!(along > 0.0) || along > model_.cap_px) return sample.velocity;
+  const double geometric_cap = parallax_cap(sample, options_);
+  const double cap = model_.cap_px > 0.0 ? std::min(model_.cap_px, geometric_cap) : geometric_cap;
+  if (!(along > 0.0) || along > cap) return sample.velocity;
   return sample.velocity - along * u;
 }
 

@@ -14,10 +14,12 @@
 // trusted only when the support is many features spread over the image (structure is; one road
 // of vehicles is a strip) and the epipole has been stable for a few frames (the camera's
 // direction of travel changes slowly; a chance alignment of vehicles does not persist). Then a
-// feature's velocity ALONG its epipolar line, on the structure side and up to a multiple of the
-// structure's median parallax (the cap), is explained as parallax and removed before the
-// moving/static decision; what is left across the line is independent motion, and a velocity on
-// the wrong side or beyond the cap is independent motion as a whole.
+// feature's velocity ALONG its epipolar line, on the structure side and up to the parallax the
+// tallest structure could have there (the cap: a fraction of the ground's image motion, set by
+// parallax_max_height_ratio), is explained as parallax and removed before the moving/static
+// decision; what is left across the line is independent motion, and a velocity on the wrong side
+// or beyond the cap is independent motion as a whole. Velocities beyond the cap take no part in
+// the fit either: fast vehicles on a road along the flight would otherwise pull the epipole.
 
 #include <cstdint>
 #include <vector>
@@ -33,6 +35,7 @@ struct ParallaxSample {
   cv::Point2f position;        // current frame
   cv::Vec2d velocity{0, 0};    // relative to the compensated ground, px/frame
   double sigma = 0.0;          // 1-sigma of each velocity component
+  double ground_flow_px = 0.0; // the ground's image motion at `position` this frame (px/frame)
 };
 
 struct ParallaxModel {
@@ -42,7 +45,7 @@ struct ParallaxModel {
   int candidates = 0;          // features with a residual clearly above their noise
   int support = 0;             // of those, consistent with the epipole
   double spread_px = 0.0;      // sqrt of the smaller eigenvalue of the supporters' position covariance
-  double cap_px = 0.0;         // largest velocity along the line explained as parallax (px/frame)
+  double cap_px = 0.0;         // parallax_cap_factor x the supporters' median parallax (0: off); parallax_cap() caps too
   int stable_frames = 0;       // consecutive frames with a consistent epipole
 };
 
@@ -67,6 +70,10 @@ class ParallaxFilter {
   const MotionOptions& options_;
   ParallaxModel model_;
 };
+
+// The largest parallax a static point at `sample` can have: structure up to a height h under a
+// camera at H moves against the ground by h / (H - h) of the ground's own image motion there.
+double parallax_cap(const ParallaxSample& sample, const MotionOptions& options);
 
 // Unit direction at `point` along the epipolar line, pointing away from the epipole (for an
 // epipole at infinity: the direction towards it, reversed). Zero at the epipole itself.

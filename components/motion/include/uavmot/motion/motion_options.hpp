@@ -67,15 +67,17 @@ struct MotionOptions {
   bool parallax_both_sides = true;  // structure on both sides of the homography's plane (real flights: it
                                     // fits a plane between ground and roofs); false: one side only
   int parallax_min_support = 12;    // features on one epipole's lines before it is trusted
+  double parallax_min_support_density = 400.0;  // ... and this many per megapixel of image
   double parallax_min_support_fraction = 0.5;  // ... and this share of the features with a clear residual
-  double parallax_min_share = 0.25;    // ... and this share of ALL classified features: structure is
+  double parallax_min_share = 0.15;    // ... and this share of ALL classified features: structure is
                                        // everywhere; movers (which can line up at a junction) are few
   double parallax_min_spread = 0.1;    // ... spread over this fraction of the smaller image side (1-sigma)
   int parallax_stable_frames = 3;      // ... found again, within parallax_stable_angle_deg, this many frames running
   double parallax_stable_angle_deg = 8.0;
   double parallax_across_sigma = 3.0;  // on a line: across-line velocity <= this * sigma + the floor
   double parallax_across_floor_px = 0.05;
-  double parallax_cap_factor = 3.0;    // parallax explained up to this times the supporters' median (tallest / typical structure)
+  double parallax_max_height_ratio = 0.1;  // tallest structure / flight height above ground: caps the parallax explained
+  double parallax_cap_factor = 0.0;    // ... and, when > 0, this times the supporters' median parallax (tighter: misses tall roofs)
   int parallax_ransac_iterations = 300;
 };
 
@@ -143,6 +145,7 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("parallax_rejection", o.parallax_rejection, Flag{});
   visit("parallax_both_sides", o.parallax_both_sides, Flag{});
   visit("parallax_min_support", o.parallax_min_support, Range<int>{2, 100000});
+  visit("parallax_min_support_density", o.parallax_min_support_density, Range<double>{0.0, 1e6});
   visit("parallax_min_support_fraction", o.parallax_min_support_fraction, Range<double>{0.0, 1.0});
   visit("parallax_min_share", o.parallax_min_share, Range<double>{0.0, 1.0});
   visit("parallax_min_spread", o.parallax_min_spread, Range<double>{0.0, 1.0});
@@ -150,6 +153,7 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("parallax_stable_angle_deg", o.parallax_stable_angle_deg, Range<double>{0.0, 90.0});
   visit("parallax_across_sigma", o.parallax_across_sigma, Range<double>{0.0, 100.0});
   visit("parallax_across_floor_px", o.parallax_across_floor_px, Range<double>{0.0, 100.0});
+  visit("parallax_max_height_ratio", o.parallax_max_height_ratio, Range<double>{0.0, 0.9});
   visit("parallax_cap_factor", o.parallax_cap_factor, Range<double>{0.0, 1000.0});
   visit("parallax_ransac_iterations", o.parallax_ransac_iterations, Range<int>{1, 100000});
 }
