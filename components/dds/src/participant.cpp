@@ -13,6 +13,9 @@
 #include <fastrtps/utils/IPLocator.h>
 #include <fastdds/dds/publisher/qos/DataWriterQos.hpp>
 #include <fastdds/dds/subscriber/qos/DataReaderQos.hpp>
+#include <fastdds/dds/subscriber/DataReaderListener.hpp>
+#include <fastdds/dds/topic/ContentFilteredTopic.hpp>
+#include <fastdds/dds/topic/IContentFilterFactory.hpp>
 #include <spdlog/spdlog.h>
 #include <unistd.h>
 
@@ -72,6 +75,76 @@ bool uses_shared_memory(const fdds::DomainParticipantQos& qos) {
 }
 }  // namespace
 
+// Filter class "UAVMOT_STREAM_IDS": a sample passes when its stream_id is one of the filter's
+// parameters. Custom rather than Fast DDS's SQL filter, which needs TypeObjects (fastddsgen
+// -typeobject), which the IDL build does not generate. Only this process registers it, so the
+// writers (other processes) do not filter: every sample is evaluated here, on reception.
+// Fast DDS's filter interfaces have no virtual destructors; these classes are final and deleted as themselves.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wnon-virtual-dtor"
+class Participant::StreamIdFilterFactory final : public fdds::IContentFilterFactory {
+ public:
+  static constexpr const char* kClass = "UAVMOT_STREAM_IDS";
+
+  void add_type(const std::string& type_name, StreamIdOf stream_id_of) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    types_.try_emplace(type_name, std::move(stream_id_of));
+  }
+
+  ReturnCode_t create_content_filter(const char*, const char* type_name, const fdds::TopicDataType*, const char*,
+                                     const ParameterSeq& parameters, fdds::IContentFilter*& filter) override {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const auto type = types_.find(type_name);
+    if (type == types_.end()) return ReturnCode_t::RETCODE_BAD_PARAMETER;
+    std::set<std::string> ids;
+    for (ParameterSeq::size_type i = 0; i < parameters.length(); ++i) ids.insert(parameters[i]);
+    // Replaces the filter of a reader whose parameters change (delete_content_filter frees the old one).
+    filter = new Filter(type->second, std::move(ids));
+    return ReturnCode_t::RETCODE_OK;
+  }
+  ReturnCode_t delete_content_filter(const char*, fdds::IContentFilter* filter) override {
+    delete static_cast<Filter*>(filter);
+    return ReturnCode_t::RETCODE_OK;
+  }
+
+ private:
+  struct Filter final : fdds::IContentFilter {
+    Filter(StreamIdOf of, std::set<std::string> ids) : stream_id_of(std::move(of)), stream_ids(std::move(ids)) {}
+    bool evaluate(const SerializedPayload& payload, const FilterSampleInfo&, const GUID_t&) const override {
+      // Deserializing only reads the payload.
+      const auto id = stream_id_of(const_cast<SerializedPayload&>(payload));
+      return id && stream_ids.count(*id) > 0;
+    }
+    StreamIdOf stream_id_of;
+    std::set<std::string> stream_ids;
+  };
+  std::mutex mutex_;
+  std::map<std::string, StreamIdOf> types_;
+};
+#pragma GCC diagnostic pop
+
+// Logs samples a reader's history refused. REJECTED_BY_INSTANCES_LIMIT is the one that loses a
+// stream: the reader holds max_instances stream ids (alive ones are never evicted in Fast DDS
+// 2.9), and the refused sample is never resent.
+class Participant::RejectLogger : public fdds::DataReaderListener {
+ public:
+  void on_sample_rejected(fdds::DataReader* reader, const fdds::SampleRejectedStatus& status) override {
+    const std::string topic = reader->get_topicdescription()->get_name();
+    // First of each reader, then every 100th: a flood must not flood the log.
+    if (status.total_count != 1 && status.total_count % 100 != 0) return;
+    if (status.last_reason == fdds::REJECTED_BY_INSTANCES_LIMIT) {
+      fdds::DataReaderQos qos = reader->get_qos();
+      spdlog::warn("{}: {} sample(s) of new stream ids rejected: this reader already holds {} stream ids (max_instances); "
+                   "those streams are lost to it. Forged ids on the network? Name the expected streams (--stream-id) "
+                   "so that others are filtered out first (docs/topics.md)",
+                   topic, status.total_count, qos.resource_limits().max_instances);
+    } else {
+      spdlog::warn("{}: {} sample(s) rejected by the reader's resource limits (reason {})", topic, status.total_count,
+                   static_cast<int>(status.last_reason));
+    }
+  }
+};
+
 std::string default_profiles_file() {
   if (const char* env = std::getenv("UAVMOT_QOS_PROFILES"); env && *env) return env;
   // Installed layout (bin/ beside share/), then the build tree's copy of bringup/qos.
@@ -125,6 +198,28 @@ Participant::Participant(DdsOptions options) : options_(std::move(options)) {
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
   if (!publisher_ || !subscriber_) throw InputError("cannot create DDS publisher/subscriber");
+}
+
+void Participant::add_stream_id_reader(const std::string& type_name, StreamIdOf stream_id_of) {
+  if (!stream_filter_) {
+    stream_filter_ = std::make_unique<StreamIdFilterFactory>();
+    if (participant_->register_content_filter_factory(StreamIdFilterFactory::kClass, stream_filter_.get()) !=
+        ReturnCode_t::RETCODE_OK) {
+      throw InputError("cannot register the stream id content filter");
+    }
+  }
+  stream_filter_->add_type(type_name, std::move(stream_id_of));
+}
+
+fdds::TopicDescription* Participant::stream_filtered(fdds::Topic* topic, const std::vector<std::string>& stream_ids) {
+  // One reader per topic and participant here; a second gets a name of its own.
+  std::string name = topic->get_name() + "/streams";
+  for (int n = 2; participant_->lookup_topicdescription(name) != nullptr; ++n) name = topic->get_name() + "/streams" + std::to_string(n);
+  // The expression only documents the filter (its class reads the parameters); an empty one would pass everything.
+  auto* filtered = participant_->create_contentfilteredtopic(name, topic, "stream_id IN (parameters)", stream_ids,
+                                                             StreamIdFilterFactory::kClass);
+  if (!filtered) throw InputError("cannot create a stream id filter on '" + topic->get_name() + "'");
+  return filtered;
 }
 
 Participant::~Participant() {
@@ -197,12 +292,15 @@ fdds::DataWriter* Participant::create_writer(fdds::Topic* topic, const std::stri
   return writer;
 }
 
-fdds::DataReader* Participant::create_reader(fdds::Topic* topic, const std::string& profile, const std::string& partition) {
+fdds::DataReader* Participant::create_reader(fdds::TopicDescription* topic, const std::string& profile,
+                                             const std::string& partition) {
   fdds::DataReaderQos qos;
   if (subscriber_->get_datareader_qos_from_profile(profile, qos) != ReturnCode_t::RETCODE_OK) {
     throw InputError("reader profile '" + profile + "' is not in '" + options_.profiles_file + "'");
   }
-  auto* reader = subscriber_for(partition)->create_datareader(topic, qos);
+  if (!reject_logger_) reject_logger_ = std::make_unique<RejectLogger>();
+  auto* reader =
+      subscriber_for(partition)->create_datareader(topic, qos, reject_logger_.get(), fdds::StatusMask::sample_rejected());
   if (!reader) {
     throw InputError("cannot create a reader on '" + topic->get_name() + "' with profile '" + profile + "'" +
                      (partition.empty() ? "" : " in partition '" + partition + "'") + " (refused by access control?)");

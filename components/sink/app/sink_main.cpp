@@ -66,9 +66,10 @@ struct SinkOptions {
 // arrives before its stream's first results waits (a few) until the results bind the stream.
 class PreviewSaver {
  public:
-  PreviewSaver(dds::Participant& participant, const std::string& dir, sink::StreamGate& gate)
+  PreviewSaver(dds::Participant& participant, const std::string& dir, sink::StreamGate& gate,
+               const std::vector<std::string>& stream_ids)
       : dir_(dir), gate_(gate),
-        reader_(participant.make_reader<msg::FramePubSubType>(dds::kDownlinkPreviewTopic, dds::TopicClass::Preview)) {
+        reader_(participant.make_reader<msg::FramePubSubType>(dds::kDownlinkPreviewTopic, dds::TopicClass::Preview, stream_ids)) {
     std::filesystem::create_directories(dir_);
   }
   bool pump() {
@@ -246,9 +247,10 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
   // Resuming, the readers also get the writers' recent history (transient-local): what reached the
   // killed sink's reader but not its files arrives again, and the frames the files hold are skipped.
   const auto inputs = o.resume ? dds::TopicClass::ChainResume : dds::TopicClass::Chain;
-  auto motion = participant.make_reader<msg::MotionEstimatePubSubType>(dds::kMotionTopic, inputs);
-  auto segmentation = participant.make_reader<msg::SegmentationPubSubType>(dds::kSegmentationTopic, inputs);
-  auto tracks = participant.make_reader<msg::TrackListPubSubType>(dds::kTracksTopic, inputs);
+  // With --stream-id, other ids are filtered out before they can fill the readers' instance slots.
+  auto motion = participant.make_reader<msg::MotionEstimatePubSubType>(dds::kMotionTopic, inputs, o.stream_ids);
+  auto segmentation = participant.make_reader<msg::SegmentationPubSubType>(dds::kSegmentationTopic, inputs, o.stream_ids);
+  auto tracks = participant.make_reader<msg::TrackListPubSubType>(dds::kTracksTopic, inputs, o.stream_ids);
   dds::HealthReporter health(participant, "sink", "*");
   health.watch(*motion);
   health.watch(*segmentation);
@@ -329,13 +331,15 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
 
 // The link (air -> ground): one sample per frame with what the UAV's chain produced of it.
 int run_downlink_sink(dds::Participant& participant, const SinkOptions& o) {
-  auto results = participant.make_reader<msg::FrameResultsPubSubType>(dds::kDownlinkResultsTopic, dds::TopicClass::Downlink);
+  // With --stream-id, other ids are filtered out before they can fill the reader's instance slots.
+  auto results =
+      participant.make_reader<msg::FrameResultsPubSubType>(dds::kDownlinkResultsTopic, dds::TopicClass::Downlink, o.stream_ids);
   dds::HealthReporter health(participant, "sink", "*");
   health.watch(*results);
   sink::StreamGate gate(o.streams, o.stream_ids);
   std::unique_ptr<PreviewSaver> preview;
   if (!o.preview_dir.empty()) {
-    preview = std::make_unique<PreviewSaver>(participant, o.preview_dir, gate);
+    preview = std::make_unique<PreviewSaver>(participant, o.preview_dir, gate, o.stream_ids);
     health.watch(preview->reader());
   }
   dds::RejectLog rejects;

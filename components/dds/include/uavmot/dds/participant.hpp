@@ -3,8 +3,10 @@
 // subscriber, that hands out typed writers and readers. Deleting it deletes every entity.
 
 #include <chrono>
+#include <functional>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -91,6 +93,22 @@ class Participant {
     auto* reader = create_reader(topic, profile, topic_name == kHealthTopic ? "*" : "");
     return std::make_unique<TopicReader<PubSubType>>(reader, topic_name);
   }
+  // A reader of only the samples whose stream_id is one of STREAM_IDS (all ids when empty): a
+  // ContentFilteredTopic that Fast DDS 2.9 evaluates before a sample enters the reader's history,
+  // so other ids never take one of its max_instances slots (docs/topics.md, "Instance limits").
+  template <class PubSubType>
+  std::unique_ptr<TopicReader<PubSubType>> make_reader(const std::string& topic_name, TopicClass topic_class,
+                                                       const std::vector<std::string>& stream_ids) {
+    if (stream_ids.empty()) return make_reader<PubSubType>(topic_name, topic_class);
+    auto* topic = topic_for(topic_name, eprosima::fastdds::dds::TypeSupport(new PubSubType()));
+    add_stream_id_reader(topic->get_type_name(), [](eprosima::fastrtps::rtps::SerializedPayload_t& payload) {
+      PubSubType type;
+      typename PubSubType::type sample;
+      return type.deserialize(&payload, &sample) ? std::optional<std::string>(sample.stream_id().to_string()) : std::nullopt;
+    });
+    auto* reader = create_reader(stream_filtered(topic, stream_ids), reader_profile(topic_class, options_.mode), "");
+    return std::make_unique<TopicReader<PubSubType>>(reader, topic_name);
+  }
   // Deletes a reader made here before the participant goes (readers that come and go, e.g. the
   // Foxglove bridge's, which reads a topic only while a viewer watches it).
   template <class PubSubType>
@@ -103,12 +121,17 @@ class Participant {
   // `partition` "": the default partition.
   eprosima::fastdds::dds::DataWriter* create_writer(eprosima::fastdds::dds::Topic* topic, const std::string& profile,
                                                     const std::string& flow, const std::string& partition);
-  eprosima::fastdds::dds::DataReader* create_reader(eprosima::fastdds::dds::Topic* topic, const std::string& profile,
-                                                    const std::string& partition);
+  eprosima::fastdds::dds::DataReader* create_reader(eprosima::fastdds::dds::TopicDescription* topic,
+                                                    const std::string& profile, const std::string& partition);
   void delete_native_reader(eprosima::fastdds::dds::DataReader* reader);  // from whichever subscriber made it
   // Partitions are publisher/subscriber QoS in DDS: one of each per partition, made when first needed.
   eprosima::fastdds::dds::Publisher* publisher_for(const std::string& partition);
   eprosima::fastdds::dds::Subscriber* subscriber_for(const std::string& partition);
+  // The stream id of a serialized sample of a type; nullopt when it does not deserialize.
+  using StreamIdOf = std::function<std::optional<std::string>(eprosima::fastrtps::rtps::SerializedPayload_t&)>;
+  void add_stream_id_reader(const std::string& type_name, StreamIdOf stream_id_of);
+  eprosima::fastdds::dds::TopicDescription* stream_filtered(eprosima::fastdds::dds::Topic* topic,
+                                                            const std::vector<std::string>& stream_ids);
 
   DdsOptions options_;
   eprosima::fastdds::dds::DomainParticipant* participant_ = nullptr;
@@ -117,6 +140,11 @@ class Participant {
   std::map<std::string, eprosima::fastdds::dds::Topic*> topics_;
   std::map<std::string, eprosima::fastdds::dds::Publisher*> partition_publishers_;
   std::map<std::string, eprosima::fastdds::dds::Subscriber*> partition_subscribers_;
+  // Outlive participant_: the destructor deletes its entities (the filtered topics) first.
+  class StreamIdFilterFactory;
+  std::unique_ptr<StreamIdFilterFactory> stream_filter_;
+  class RejectLogger;
+  std::unique_ptr<RejectLogger> reject_logger_;
 };
 
 }  // namespace uavmot::dds
