@@ -318,7 +318,9 @@ class AirGround : public ::testing::Test {
       return full;
     };
     auto ground_args = args(kGroundProfile, sequence_, run.out);
-    ground_args.insert(ground_args.end(), {"--set", "streams=" + std::to_string(airs.size())});
+    std::string stream_ids;
+    for (const Air& a : airs) stream_ids += (stream_ids.empty() ? "" : ",") + a.stream_id;
+    ground_args.insert(ground_args.end(), {"--set", "streams=" + std::to_string(airs.size()), "--set", "stream_ids=" + stream_ids});
     ChildProcess ground(with_ns(link_->ground(), ground_args), root_ + "/" + name + "_ground.log");
     std::vector<std::unique_ptr<ChildProcess>> air;
     for (size_t i = 0; i < airs.size(); ++i) {

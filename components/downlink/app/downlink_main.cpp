@@ -17,7 +17,8 @@ int downlink_main(int argc, char** argv) {
     app.add_option("--air-domain", o.air_domain, "DDS domain of the UAV's own processes")->check(CLI::Range(0, 232))->capture_default_str();
     app.add_option("--air-transport", o.air_transport, "participant profile on the UAV's side (shm: never on the link)")
         ->capture_default_str();
-    app.add_option("--stream-id", o.stream_id, "this UAV's stream: health reports of nodes serving every stream (\"*\") get it")
+    app.add_option("--stream-id", o.stream_id, "this UAV's stream: the only one relayed (others are filtered out), and health reports of nodes "
+                   "serving every stream (\"*\") get it; \"*\": relay every stream")
         ->capture_default_str();
     app.add_option("--streams", o.streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
     app.add_flag("--resume", o.resume,

@@ -53,6 +53,7 @@ int run_downlink(DownlinkOptions o) {
   if (o.air_domain == link_options.domain_id && o.air_transport == link_options.participant_profile) {
     throw InputError("--air-domain and --domain must differ when both sides use the same transport");
   }
+  if (o.stream_id != "*" && o.streams != 1) throw InputError("--stream-id names one stream: --streams must be 1");
   // Only the link uses the discovery server: Fast DDS would turn every participant of this
   // process into a client of $ROS_DISCOVERY_SERVER, the shared-memory one too, which would then
   // never meet the UAV's processes.
@@ -68,7 +69,10 @@ int run_downlink(DownlinkOptions o) {
   dds::Participant link(link_options);
 
   dds::HealthReporter health(link, "downlink", o.stream_id);
-  ResultsRelay results(air, link, o.link.wait_subscribers, health, o.resume);
+  // A named stream: the air readers take only its samples, so made-up ids on the UAV's domain can
+  // neither fill their instance slots nor end the run with an end of stream of their own.
+  const std::vector<std::string> own_streams = o.stream_id == "*" ? std::vector<std::string>{} : std::vector<std::string>{o.stream_id};
+  ResultsRelay results(air, link, o.link.wait_subscribers, health, o.resume, own_streams);
   // One reader per air component's partition: only a component's own reports are passed on as its.
   std::vector<std::pair<std::string, std::unique_ptr<dds::TopicReader<msg::ComponentHealthPubSubType>>>> air_health;
   for (const char* component : {"source", "motion", "segmentation", "tracking"}) {
@@ -83,7 +87,7 @@ int run_downlink(DownlinkOptions o) {
   health.watch(*link_health);
   std::unique_ptr<PreviewRelay> preview;
   if (o.preview.rate_hz > 0) {
-    preview = std::make_unique<PreviewRelay>(air, link, o.preview);
+    preview = std::make_unique<PreviewRelay>(air, link, o.preview, own_streams);
     health.watch(preview->frames());
     health.watch(preview->writer());
     spdlog::info("preview: {} Hz, {} px wide, at most {} kbit/s", o.preview.rate_hz, o.preview.width, o.preview.kbps);

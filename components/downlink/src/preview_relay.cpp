@@ -15,9 +15,10 @@ std::chrono::steady_clock::duration seconds(double s) {
 
 }  // namespace
 
-PreviewRelay::PreviewRelay(dds::Participant& air, dds::Participant& link, const PreviewOptions& o)
+PreviewRelay::PreviewRelay(dds::Participant& air, dds::Participant& link, const PreviewOptions& o,
+                           const std::vector<std::string>& stream_ids)
     : options_(o),
-      frames_(air.make_reader<msg::FramePubSubType>(dds::kFramesTopic, dds::TopicClass::Preview)),
+      frames_(air.make_reader<msg::FramePubSubType>(dds::kFramesTopic, dds::TopicClass::Preview, stream_ids)),
       writer_(link.make_writer<msg::FramePubSubType>(dds::kDownlinkPreviewTopic, dds::TopicClass::Preview,
                                                      o.kbps > 0 ? kFlow : "")) {}
 

@@ -23,15 +23,16 @@ void strip(MotionEstimate& m) { m.features = {}; }
 void strip(SegmentationResult& s) { s.clusters = {}; }
 void strip(TrackList&) {}
 
+dds::TopicClass inputs_of(bool resume) { return resume ? dds::TopicClass::ChainResume : dds::TopicClass::Chain; }
+
 }  // namespace
 
 ResultsRelay::ResultsRelay(dds::Participant& air, dds::Participant& link, int required_readers, dds::HealthReporter& health,
-                           bool resume)
+                           bool resume, const std::vector<std::string>& stream_ids)
     : mode_(link.options().mode),
-      motion_(air.make_reader<msg::MotionEstimatePubSubType>(dds::kMotionTopic, resume ? dds::TopicClass::ChainResume : dds::TopicClass::Chain)),
-      segmentation_(air.make_reader<msg::SegmentationPubSubType>(dds::kSegmentationTopic,
-                                                                 resume ? dds::TopicClass::ChainResume : dds::TopicClass::Chain)),
-      tracks_(air.make_reader<msg::TrackListPubSubType>(dds::kTracksTopic, resume ? dds::TopicClass::ChainResume : dds::TopicClass::Chain)),
+      motion_(air.make_reader<msg::MotionEstimatePubSubType>(dds::kMotionTopic, inputs_of(resume), stream_ids)),
+      segmentation_(air.make_reader<msg::SegmentationPubSubType>(dds::kSegmentationTopic, inputs_of(resume), stream_ids)),
+      tracks_(air.make_reader<msg::TrackListPubSubType>(dds::kTracksTopic, inputs_of(resume), stream_ids)),
       writer_(link.make_writer<msg::FrameResultsPubSubType>(dds::kDownlinkResultsTopic, dds::TopicClass::Downlink)),
       health_(health) {
   if (mode_ == dds::DeliveryMode::Lossless) writer_->set_required_readers(required_readers);

@@ -14,6 +14,7 @@
 // every complete line written before. With --resume a restarted sink continues the unfinished run
 // in --out: its files keep every whole frame, and frames that come again are skipped.
 
+#include <algorithm>
 #include <filesystem>
 #include <deque>
 #include <map>
@@ -444,9 +445,13 @@ int sink_main(int argc, char** argv) {
         app.add_option("--streams", o.streams, "write up to this many streams (the first valid ids that arrive); exit after they ended")
             ->check(CLI::PositiveNumber)
             ->capture_default_str();
+    // Comma-separated too, and "" for none: a launch profile passes its ids as one variable
+    // (bringup/ground.yaml's stream_ids), which may be empty.
     app.add_option("--stream-id", o.stream_ids,
-                   "write only this stream id (repeat for several; sets --streams); default: the first ids that arrive")
-        ->check([](const std::string& id) { return stream_id_problem(id); });
+                   "write only this stream id (repeat, or separate by commas, for several; sets --streams; \"\": none); "
+                   "default: the first ids that arrive")
+        ->delimiter(',')
+        ->check([](const std::string& id) { return id.empty() ? std::string() : stream_id_problem(id); });
     app.add_option("--idle-timeout", o.idle_timeout_s, "fail if nothing arrives for this long once started (s, 0 = wait forever)");
     app.add_option("--stream-timeout", o.stream_timeout_s,
                    "give up a stream (a UAV) that sent nothing for this long: the others go on, exit 1 at the end (s, 0 = wait "
@@ -465,6 +470,7 @@ int sink_main(int argc, char** argv) {
     // fps_option, streams_option by value: locals of this set-up function, which returns before the run.
     return [&, fps_option, streams_option]() -> int {
       dds::finalize(node, "sink");
+      o.stream_ids.erase(std::remove(o.stream_ids.begin(), o.stream_ids.end(), std::string()), o.stream_ids.end());
       if (!o.stream_ids.empty()) {
         const auto ids = static_cast<int>(std::set<std::string>(o.stream_ids.begin(), o.stream_ids.end()).size());
         if (streams_option->count() > 0 && o.streams != ids) {

@@ -9,6 +9,8 @@
 #include <chrono>
 #include <cstdint>
 #include <memory>
+#include <string>
+#include <vector>
 
 #include "framePubSubTypes.h"
 #include "uavmot/dds/health_reporter.hpp"
@@ -27,7 +29,9 @@ class PreviewRelay {
  public:
   static constexpr const char* kFlow = "uavmot_preview";  // the flow controller's name in the link's participant
 
-  PreviewRelay(dds::Participant& air, dds::Participant& link, const PreviewOptions& options);
+  // `stream_ids`: the frames of these only (a content filter, as ResultsRelay's); empty: every id.
+  PreviewRelay(dds::Participant& air, dds::Participant& link, const PreviewOptions& options,
+               const std::vector<std::string>& stream_ids = {});
 
   void pump(dds::HealthReporter& health);
 

@@ -9,6 +9,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "downlinkPubSubTypes.h"
 #include "motionPubSubTypes.h"
@@ -24,8 +25,10 @@ namespace uavmot::downlink {
 class ResultsRelay {
  public:
   // `resume`: read the chain topics with their writers' recent history (dds::TopicClass::ChainResume).
+  // `stream_ids`: relay only these (a content filter: other ids never take one of the readers'
+  // instance slots, docs/topics.md "Instance limits"); empty: every id.
   ResultsRelay(dds::Participant& air, dds::Participant& link, int required_readers, dds::HealthReporter& health,
-               bool resume = false);
+               bool resume = false, const std::vector<std::string>& stream_ids = {});
 
   // Takes what waits on the three inputs and publishes every frame that is complete. True if any was taken.
   bool pump();
