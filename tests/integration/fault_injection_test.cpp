@@ -9,6 +9,8 @@
 //   no state; the source continues after the last frame it published. Each gets again what reached
 //   its killed predecessor but not its output (transient-local readers; the source resends its last
 //   frame), and what comes twice is skipped downstream.
+// - the downlink of bringup/air.yaml (ground.yaml on the same host), SIGKILLed or SIGSTOPped:
+//   respawned with --resume, the ground's files byte-identical.
 // Live mode: SIGKILL of each component, and the time until tracks flow again.
 
 #include <signal.h>
@@ -29,7 +31,7 @@ using testing::ChildProcess;
 
 enum class Outcome { Identical, Recovered, LaunchFails };
 
-// The cases' DDS domains are 190 + 0..15; UAVMOT_FAULT_DOMAIN_BASE moves them (e.g. to 206-221), so
+// The cases' DDS domains are 190 + 0..19; UAVMOT_FAULT_DOMAIN_BASE moves them (e.g. to 210-229), so
 // two checkouts can run this suite on one host at the same time without meeting.
 int domain(int offset) {
   const char* base = std::getenv("UAVMOT_FAULT_DOMAIN_BASE");
@@ -133,32 +135,60 @@ INSTANTIATE_TEST_SUITE_P(EveryComponent, FaultInjection,
                          name_of);
 
 
-// The downlink (bringup/air.yaml + bringup/ground.yaml, both on this host: the link on domain
-// base + 16 over UDP, the air's own processes on base + 17 over shared memory), lossless, SIGKILLed
-// once the ground sink has written tracks past frame 40. It is respawned with --resume: its readers
-// get the air chain writers' last 64 samples, so what it had taken but not sent comes again, and the
-// ground sink skips the frames it has. The ground's files (what the link carries: no features.csv,
-// no clusters.txt) must be byte-identical to the undisturbed local run's.
-TEST_F(ChainRuns, DownlinkSigkillMidRun) {
+// The downlink (bringup/air.yaml + bringup/ground.yaml, both on this host: the link over UDP, the
+// air's own processes over shared memory, domains of their own per case), lossless, SIGKILLed or
+// SIGSTOPped once the ground sink has written tracks past frame 40. A stopped downlink falls silent
+// on uavmot/health (the link's domain): the air launcher's watchdog (hang_timeout 7 s) kills it.
+// Either way it is respawned with --resume: its readers get the air chain writers' last 64
+// samples, so what it had taken but not sent comes again, and the ground sink skips the frames it
+// has. The ground's files (what the link carries: no features.csv, no clusters.txt) must be
+// byte-identical to the undisturbed local run's.
+struct DownlinkFault {
+  int signal;
+  int domain;  // the link's, offset from the suite's base; the air's is the next
+};
+
+std::string signal_name_of(const ::testing::TestParamInfo<DownlinkFault>& info) {
+  return info.param.signal == SIGKILL ? "SIGKILL" : "SIGSTOP";
+}
+
+class DownlinkFaultInjection : public ChainRuns, public ::testing::WithParamInterface<DownlinkFault> {};
+
+TEST_P(DownlinkFaultInjection, DownlinkFaultMidRun) {
+  const DownlinkFault f = GetParam();
   ASSERT_FALSE(root_.empty());
-  const std::string name = "downlink_SIGKILL";
+  const std::string name = "downlink_" + signal_name_of({f, 0});
   const std::string ground_out = root_ + "/" + name + "_ground";
-  const std::string link_domain = "domain=" + std::to_string(domain(16));
+  const std::string link_domain = "domain=" + std::to_string(domain(f.domain));
   ChildProcess ground({binary("uavmot"), "launch", std::string(UAVMOT_SOURCE_DIR) + "/bringup/ground.yaml", "--input",
                        sequence_, "--out", ground_out, "--set", link_domain},
                       root_ + "/" + name + "_ground.log");
   ChildProcess air({binary("uavmot"), "launch", std::string(UAVMOT_SOURCE_DIR) + "/bringup/air.yaml", "--input", sequence_,
                     "--out", root_ + "/" + name + "_air", "--set", link_domain, "--set",
-                    "air_domain=" + std::to_string(domain(17))},
+                    "air_domain=" + std::to_string(domain(f.domain + 1)), "--set", "hang_timeout=7"},
                    root_ + "/" + name + "_air.log");
-  const int victim = testing::signal_when_written(air, "downlink", ground_out + "/tracks_obb.csv", 40, SIGKILL).pid;
+  const int victim = testing::signal_when_written(air, "downlink", ground_out + "/tracks_obb.csv", 40, f.signal).pid;
   ASSERT_GT(victim, 0) << air.log() << ground.log();
   const auto air_code = air.wait(std::chrono::seconds(300));
   const auto ground_code = ground.wait(std::chrono::seconds(120));
-  if (!air_code) air.signal(SIGKILL);
+  if (!air_code) {
+    ::kill(victim, SIGKILL);
+    air.signal(SIGKILL);
+  }
   if (!ground_code) ground.signal(SIGKILL);
   ASSERT_TRUE(air_code.has_value() && ground_code.has_value()) << "a launch did not end\n" << air.log() << ground.log();
-  EXPECT_NE(air.log().find("downlink killed by signal 9"), std::string::npos) << air.log();
+  const std::string log = air.log();
+  if (f.signal == SIGSTOP) {
+    EXPECT_NE(log.find("downlink (pid " + std::to_string(victim) + ") hangs"), std::string::npos) << log;
+    EXPECT_NE(log.find("downlink hung, killed by signal 9"), std::string::npos) << log;
+  } else {
+    EXPECT_NE(log.find("downlink killed by signal 9"), std::string::npos) << log;
+  }
+  EXPECT_NE(log.find("respawning"), std::string::npos) << log;
+  // Only the downlink's own silence counts: nothing else on the air was taken for hung.
+  size_t hangs = 0;
+  for (size_t at = log.find(") hangs: "); at != std::string::npos; at = log.find(") hangs: ", at + 1)) ++hangs;
+  EXPECT_EQ(hangs, f.signal == SIGSTOP ? 1u : 0u) << log;
   std::string differing;
   for (const char* file : {"homographies.txt", "tracks.txt", "tracks_obb.csv", "regions.txt"}) {
     if (testing::read_file(ground_out + "/" + file) != testing::read_file(root_ + "/undisturbed/" + file)) differing += std::string(" ") + file;
@@ -166,10 +196,13 @@ TEST_F(ChainRuns, DownlinkSigkillMidRun) {
   std::printf("%s at frame %d: air exit %d, ground exit %d; ground files differing from the undisturbed run:%s\n", name.c_str(),
               testing::last_frame_written(ground_out + "/tracks_obb.csv"), *air_code, *ground_code,
               differing.empty() ? " none" : differing.c_str());
-  EXPECT_EQ(*air_code, 0) << air.log();
+  EXPECT_EQ(*air_code, 0) << log;
   EXPECT_EQ(*ground_code, 0) << ground.log();
-  EXPECT_EQ(differing, "") << air.log() << ground.log();
+  EXPECT_EQ(differing, "") << log << ground.log();
 }
+
+INSTANTIATE_TEST_SUITE_P(Downlink, DownlinkFaultInjection,
+                         ::testing::Values(DownlinkFault{SIGKILL, 16}, DownlinkFault{SIGSTOP, 18}), signal_name_of);
 
 // Live mode: SIGKILL of each component while the source publishes at the camera's rate (25 fps,
 // 300 frames), respawn_delay 0.2 s. Recovery: from the kill to the first tracks the sink writes for a
