@@ -159,6 +159,43 @@ std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::
   return detect_in_cells(gray, existing, o, nullptr, 0);
 }
 
+std::vector<cv::Point2f> detect_changed_corners(const cv::Mat& gray, const cv::Mat& changed,
+                                                const std::vector<cv::Point2f>& existing, const MotionOptions& o,
+                                                int budget) {
+  std::vector<cv::Point2f> added;
+  if (budget <= 0 || gray.empty() || changed.size() != gray.size()) return added;
+  const int cell = detection_cell_size(o, gray.size());
+  const int cols = (gray.cols + cell - 1) / cell;
+  const int rows = (gray.rows + cell - 1) / cell;
+  CellBuckets buckets(cols, rows, cell, o.min_distance_px);
+  for (const auto& p : existing) buckets.add(p);
+  const cv::Rect usable(o.border_px, o.border_px, gray.cols - 2 * o.border_px, gray.rows - 2 * o.border_px);
+  if (usable.width <= 0 || usable.height <= 0) return added;
+  std::vector<std::pair<int, int>> to_search;  // (-changed pixels, cell): most changed first
+  for (int index = 0; index < cols * rows; ++index) {
+    const cv::Rect area = cv::Rect((index % cols) * cell, (index / cols) * cell, cell, cell) & usable;
+    if (area.width <= 0 || area.height <= 0) continue;
+    const int count = cv::countNonZero(changed(area));
+    if (count > 0) to_search.emplace_back(-count, index);
+  }
+  std::sort(to_search.begin(), to_search.end());
+  for (const auto& [minus_count, index] : to_search) {
+    if (budget <= 0) break;
+    const cv::Rect area = cv::Rect((index % cols) * cell, (index / cols) * cell, cell, cell) & usable;
+    int placed = 0;
+    for (const auto& c : cell_candidates(gray, area, o)) {
+      if (!changed.at<uchar>(c.y, c.x)) continue;
+      const cv::Point2f p(static_cast<float>(c.x), static_cast<float>(c.y));
+      if (!buckets.is_free(p)) continue;
+      buckets.add(p);
+      added.push_back(p);
+      --budget;
+      if (++placed >= o.change_features_per_cell || budget <= 0) break;
+    }
+  }
+  return added;
+}
+
 std::vector<cv::Point2f> GridCornerDetector::detect(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
                                                     bool continuous) {
   const int cell = detection_cell_size(options_, gray.size());

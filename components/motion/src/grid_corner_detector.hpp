@@ -27,6 +27,14 @@ int detection_cell_size(const MotionOptions& options, cv::Size size);
 std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
                                                 const MotionOptions& options);
 
+// Corners on changed pixels (`changed`: CV_8UC1, non-zero = changed, `gray`'s size): in every cell
+// with changed pixels, whatever it already holds, up to change_features_per_cell new ones there,
+// at least min_distance_px from every point of `existing` and from each other, at most `budget` in
+// all. Cells with the most changed pixels first (ties row-major), strongest corner first.
+std::vector<cv::Point2f> detect_changed_corners(const cv::Mat& gray, const cv::Mat& changed,
+                                                const std::vector<cv::Point2f>& existing, const MotionOptions& options,
+                                                int budget);
+
 // The same, remembering cells that gave no new corner (flat ground, sky, a blank frame, or every
 // corner too close to a live feature) and searching them again only after `empty_cell_retry_frames`
 // calls (staggered by cell), so such areas do not cost a corner search every frame. With `continuous` false (first frame, after an invalid one)

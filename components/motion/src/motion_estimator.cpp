@@ -13,6 +13,7 @@
 #include <opencv2/imgproc.hpp>
 
 #include "background_flow.hpp"
+#include "change_mask.hpp"
 #include "grid_corner_detector.hpp"
 #include "homography_estimation.hpp"
 #include "homography_refinement.hpp"
@@ -304,7 +305,16 @@ void MotionEstimator::Impl::detect_new_features(const cv::Mat& gray, bool contin
   std::vector<cv::Point2f> existing;
   existing.reserve(features_.size());
   for (const auto& f : features_) existing.push_back(f.position);
-  for (const auto& p : detector_.detect(gray, existing, continuous)) {
+  std::vector<cv::Point2f> found;
+  if (continuous && options_.change_seed_features > 0 && !previous_.empty()) {
+    // Before the grid fills the budget: what moves matters more than coverage (change_mask.hpp).
+    const cv::Mat changed = changed_pixels(previous_.levels[0], gray, last_motion_, options_);
+    found = detect_changed_corners(gray, changed, existing, options_, options_.change_seed_features);
+    existing.insert(existing.end(), found.begin(), found.end());
+  }
+  const std::vector<cv::Point2f> grid = detector_.detect(gray, existing, continuous);
+  found.insert(found.end(), grid.begin(), grid.end());
+  for (const auto& p : found) {
     LiveFeature f;
     f.id = next_id_++;
     f.position = p;

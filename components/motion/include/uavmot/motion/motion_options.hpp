@@ -19,6 +19,14 @@ struct MotionOptions {
   double min_corner_response = 2e-3;  // absolute minimum eigenvalue (cv::cornerMinEigenVal units)
   int border_px = 6;                // features this close to the image border are not used
   int empty_cell_retry_frames = 4;  // a cell that gave no new corner waits this many frames (staggered)
+  // Features seeded on change: corners on pixels that differ from the previous frame warped by the
+  // homography (something moves there) are added first, even in cells that hold enough features
+  // and when max_features is reached: at most this many per frame, change_features_per_cell per
+  // cell; 0 = off (the default: on the real clips it adds false boxes, docs/motion.md).
+  int change_seed_features = 0;
+  int change_features_per_cell = 2;
+  double change_threshold_sigma = 4.0;  // changed: |difference| above this many robust sigmas ...
+  double change_min_grey = 12.0;        // ... and above this many grey levels
 
   // --- Pyramidal Lucas-Kanade with forward-backward check ----------------------------------
   int lk_window_px = 11;            // odd window side
@@ -106,6 +114,10 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("min_corner_response", o.min_corner_response, Range<double>{0.0, 1.0});
   visit("border_px", o.border_px, Range<int>{0, 256});
   visit("empty_cell_retry_frames", o.empty_cell_retry_frames, Range<int>{1, 1000});
+  visit("change_seed_features", o.change_seed_features, Range<int>{0, 100000});
+  visit("change_features_per_cell", o.change_features_per_cell, Range<int>{1, 64});
+  visit("change_threshold_sigma", o.change_threshold_sigma, Range<double>{0.0, 100.0});
+  visit("change_min_grey", o.change_min_grey, Range<double>{0.0, 255.0});
   visit("lk_window_px", o.lk_window_px, Range<int>{5, 63});
   visit("pyramid_levels", o.pyramid_levels, Range<int>{0, 6});
   visit("lk_max_iterations", o.lk_max_iterations, Range<int>{1, 200});
