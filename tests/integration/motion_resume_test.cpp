@@ -10,6 +10,7 @@
 
 #include <signal.h>
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <regex>
@@ -100,6 +101,15 @@ TEST(MotionResume, NewLaunchContinuesExactlyWhenMotionsStateIsAheadOfTheTrackers
       << second_log;
   EXPECT_TRUE(std::regex_search(second_log, std::regex("restored \\d+ tracks at frame " + std::to_string(tracker_frame))))
       << second_log;
+
+  // The ring on disk: the last 32 states (bringup/local.yaml's motion_state_keep), those of the first
+  // launch after K replaced.
+  std::vector<std::string> kept;
+  for (const auto& entry : fs::directory_iterator(motion_state)) kept.push_back(entry.path().filename().string());
+  std::sort(kept.begin(), kept.end());
+  ASSERT_EQ(kept.size(), 32u);
+  EXPECT_EQ(kept.front(), "motion_state_uav1.0000000049.bin");
+  EXPECT_EQ(kept.back(), "motion_state_uav1.0000000080.bin");
 
   ASSERT_EQ(last_frame_written(root + "/second/tracks_obb.csv"), last_frame_written(root + "/undisturbed/tracks_obb.csv"));
   for (const char* file : {"tracks.txt", "tracks_obb.csv", "regions.txt", "clusters.txt", "homographies.txt", "features.csv"}) {
