@@ -42,7 +42,7 @@ struct StreamMotion {
   int64_t saved_frame = 0;     // the last frame whose state was saved
   uint64_t saves = 0;
   double serialise_ms = 0.0;   // total time of save_state()
-  double write_ms = 0.0;       // total time of the synced write (write_file_durably)
+  double write_ms = 0.0;       // total time of the ring's save (synced write, removals)
   size_t state_bytes = 0;      // of the last save
 };
 
