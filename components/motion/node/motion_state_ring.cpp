@@ -47,8 +47,8 @@ MotionStateRing::MotionStateRing(std::string dir, std::string stream, int keep)
   std::error_code ec;
   for (fs::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
-    if (auto frame = frame_in_name(name, prefix(), ".bin")) {
-      frames_.insert(*frame);
+    if (auto frame = frame_in_name(name, prefix(), ".bin"); frame && fs::path(path(*frame)).filename() == name) {
+      frames_.insert(*frame);  // only names as this ring writes them, which it can also remove
     } else if (frame_in_name(name, prefix(), ".bin.tmp")) {
       fs::remove(it->path(), ec);  // a write a crash cut short; the state before it is kept
       ec.clear();

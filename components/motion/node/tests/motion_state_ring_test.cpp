@@ -91,6 +91,7 @@ TEST_F(MotionStateRingTest, OnlyThisStreamsStateFilesAreListedAndLeftoverTempFil
   write("motion_state_uav2.0000000007.bin", state_of(7));   // another stream
   write("motion_state_uav1.bin", state_of(3));              // the legacy single file: not a ring member
   write("motion_state_uav1.x0000008.bin", state_of(8));     // not a frame number
+  write("motion_state_uav1.9.bin", state_of(9));            // not as the ring names frame 9
   write("motion_state_uav1.0000000005.bin.tmp", kDamaged);  // a write a crash cut short
   MotionStateRing ring(dir_, "uav1", 32);
   EXPECT_EQ(ring.frames(), (std::set<int64_t>{4}));
