@@ -1,21 +1,24 @@
 // uavmot-motion: frames in (uavmot/frames), motion estimates out (uavmot/motion).
 // One MotionEstimator per stream; in live mode the newest frame wins and gaps count as drops.
-// With --state-dir, each estimator's state is saved after every frame; a restarted instance restores
-// it and continues from the next frame with the same estimates as an uninterrupted run.
+// With --state-dir, each estimator's state is saved after every frame, the last --state-keep of them
+// kept (motion_state_ring.hpp); a restarted instance restores the newest before the first frame it
+// receives and continues from there with the same estimates as an uninterrupted run.
 
 #include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <map>
+#include <optional>
+#include <string>
+#include <vector>
 
 #include <spdlog/spdlog.h>
 
 #include "framePubSubTypes.h"
 #include "motionPubSubTypes.h"
-#include "motion_state_file.hpp"
+#include "motion_state_ring.hpp"
 #include "uavmot/config/chain_config.hpp"
 #include "uavmot/core/app.hpp"
-#include "uavmot/core/durable_file.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/dds/single_input_node.hpp"
@@ -33,14 +36,78 @@ void keep_moving_features(msg::MotionEstimate& m) {
 
 struct StreamMotion {
   motion::MotionEstimator estimator;
+  std::optional<motion::MotionStateRing> states{};  // with --state-dir
   int64_t restored_frame = 0;  // frames up to this one are already in the restored state
   bool continued = false;      // a frame after the restored state was processed
-  int64_t saved_frame = 0;     // the last frame whose state is in the state file
+  int64_t saved_frame = 0;     // the last frame whose state was saved
   uint64_t saves = 0;
   double serialise_ms = 0.0;   // total time of save_state()
-  double write_ms = 0.0;       // total time of the synced write (write_file_durably)
+  double write_ms = 0.0;       // total time of the ring's save (synced write, removals)
   size_t state_bytes = 0;      // of the last save
 };
+
+std::string frame_range(const std::vector<int64_t>& frames) {
+  return frames.size() == 1 ? std::to_string(frames.front())
+                            : std::to_string(frames.front()) + "-" + std::to_string(frames.back());
+}
+
+// Restores the newest kept state before FIRST_FRAME, the first frame this process received of the
+// stream: its state at FIRST_FRAME - 1 continues exactly, also when later states were saved (a stop
+// left motion ahead of the tracker, and the new launch starts after the tracker's frame). Later
+// states are never taken: the frames up to them would be skipped without an estimate.
+void restore_kept_state(StreamMotion& s, const std::string& stream, int64_t first_frame,
+                        const motion::MotionOptions& options, const SceneInfo& scene) {
+  const auto adopted = s.states->adopt_legacy([&](const std::vector<uint8_t>& bytes) {
+    motion::MotionEstimator scratch(options, scene);
+    scratch.restore_state(bytes);
+    return scratch.last_frame_index();
+  });
+  if (adopted) {
+    spdlog::info("stream '{}': the single motion state file of an earlier version (frame {}) is now '{}'", stream,
+                 *adopted, s.states->path(*adopted));
+  }
+  size_t bytes_restored = 0;
+  const auto choice = motion::restore_before(*s.states, first_frame, [&](const std::vector<uint8_t>& bytes) {
+    s.estimator.restore_state(bytes);
+    bytes_restored = bytes.size();
+    return s.estimator.last_frame_index();
+  });
+  for (const auto& refused : choice.refused) {
+    spdlog::warn("stream '{}': passed over a damaged motion state for an older one: {}", stream, refused);
+  }
+  if (choice.restored) {
+    s.restored_frame = *choice.restored;
+    spdlog::info("stream '{}': restored the motion state at frame {} ({} bytes): the newest kept before the first "
+                 "frame received ({})",
+                 stream, s.restored_frame, bytes_restored, first_frame);
+    if (!choice.newer.empty()) {
+      spdlog::info("stream '{}': the kept states of frames {} are not used (after frame {}); they are replaced as "
+                   "this run saves",
+                   stream, frame_range(choice.newer), first_frame - 1);
+    }
+  } else if (!choice.newer.empty()) {
+    spdlog::warn("stream '{}': the first frame received is {}, but every kept motion state is of a later frame ({}): "
+                 "starting this stream afresh (continuing from one would leave the frames up to it without an "
+                 "estimate); they are replaced as this run saves",
+                 stream, first_frame, frame_range(choice.newer));
+  }
+}
+
+// --state-keep: at least 1, with a message that says what the number is.
+CLI::Validator states_kept_check() {
+  return CLI::Validator(
+      [](std::string& value) -> std::string {
+        try {
+          size_t used = 0;
+          const long long n = std::stoll(value, &used);
+          if (used == value.size() && n >= 1 && n <= 1000000) return {};
+        } catch (const std::exception&) {
+        }
+        return "'" + value + "' is not a number of saved motion states (per stream) to keep: "
+               "give a whole number of at least 1";
+      },
+      "N>=1");
+}
 
 int motion_main(int argc, char** argv) {
   dds::NodeOptions node;
@@ -48,6 +115,7 @@ int motion_main(int argc, char** argv) {
   int streams = 1;
   std::string features = "all";
   std::string state_dir;
+  int state_keep = motion::kDefaultStatesKept;
   return run_app(argc, argv, "motion", "estimate camera motion and independently moving features (frames -> motion)", [&](CLI::App& app) {
     config::add_node_config_options(app, config_args, "scene and motion");
     app.add_option("--streams", streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
@@ -59,6 +127,11 @@ int motion_main(int argc, char** argv) {
     app.add_option("--state-dir", state_dir,
                    "save each stream's estimator state here after every frame and restore it on start "
                    "(a respawned motion continues bit-identically)");
+    app.add_option("--state-keep", state_keep,
+                   "saved states kept per stream (the newest N): a new launch can continue from any of their "
+                   "frames, e.g. the tracker's when motion had got further")
+        ->check(states_kept_check())
+        ->capture_default_str();
     dds::add_node_options(app, node);
     return [&]() -> int {
       dds::finalize(node, "motion");
@@ -70,21 +143,12 @@ int motion_main(int argc, char** argv) {
       if (!state_dir.empty()) std::filesystem::create_directories(state_dir);
       dds::Participant participant(node.dds);
       std::map<std::string, StreamMotion> estimators;
-      auto state_file = [&](const std::string& stream) { return state_dir + "/motion_state_" + stream + ".bin"; };
-      auto estimator_for = [&](const std::string& stream) -> StreamMotion& {
+      // A stream's estimator is made, and its state restored, at the first frame received of it.
+      auto estimator_for = [&](const std::string& stream, int64_t first_frame) -> StreamMotion& {
         auto [it, fresh] = estimators.try_emplace(stream, StreamMotion{motion::MotionEstimator(options, config.scene)});
         if (fresh && !state_dir.empty()) {
-          if (auto bytes = motion::load_state_file(state_file(stream))) {
-            try {
-              it->second.estimator.restore_state(*bytes);
-            } catch (const InputError& e) {
-              throw InputError("motion state file '" + state_file(stream) + "': " + e.what() +
-                               " (remove it to start this stream afresh)");
-            }
-            it->second.restored_frame = it->second.estimator.last_frame_index();
-            spdlog::info("stream '{}': restored the motion state at frame {} ({} bytes)", stream, it->second.restored_frame,
-                         bytes->size());
-          }
+          it->second.states.emplace(state_dir, stream, state_keep);
+          restore_kept_state(it->second, stream, first_frame, options, config.scene);
         }
         return it->second;
       };
@@ -95,7 +159,7 @@ int motion_main(int argc, char** argv) {
       Node single(participant,
                   {"motion", dds::kFramesTopic, dds::kMotionTopic, frames_class, streams, node.wait_subscribers},
                   [&](const std::string& stream, const Frame& frame) -> std::optional<msg::MotionEstimate> {
-                    StreamMotion& s = estimator_for(stream);
+                    StreamMotion& s = estimator_for(stream, frame.index);
                     if (frame.index <= s.restored_frame) return std::nullopt;  // already in the restored state
                     if (!s.continued && s.restored_frame > 0 && frame.index != s.restored_frame + 1) {
                       spdlog::warn("stream '{}': the restored state is at frame {} but the next frame here is {}: "
@@ -110,13 +174,13 @@ int motion_main(int argc, char** argv) {
                   // The state is saved once the frame's estimate is out: a crash in between makes the
                   // respawned motion redo that frame (the same bytes), and its readers skip the repeat.
                   [&](const std::string& stream, int64_t index) {
-                    if (state_dir.empty()) return;
                     StreamMotion& s = estimators.at(stream);
+                    if (!s.states) return;
                     const auto t0 = std::chrono::steady_clock::now();
                     const std::vector<uint8_t> bytes = s.estimator.save_state();
                     const auto t1 = std::chrono::steady_clock::now();
                     try {
-                      write_file_durably(state_file(stream), bytes);
+                      s.states->save(index, bytes);
                     } catch (const OutputError& e) {
                       spdlog::warn("cannot write motion state: {}", e.what());
                       return;
@@ -132,8 +196,9 @@ int motion_main(int argc, char** argv) {
         if (s.saves > 0) {
           const double n = static_cast<double>(s.saves);
           spdlog::info("stream '{}': motion state saved at frame {} in '{}' ({} bytes; {} saves, on average {:.2f} ms to "
-                       "serialise + {:.2f} ms to write and sync)",
-                       stream, s.saved_frame, state_file(stream), s.state_bytes, s.saves, s.serialise_ms / n, s.write_ms / n);
+                       "serialise + {:.2f} ms to write, sync and remove the oldest; {} kept)",
+                       stream, s.saved_frame, s.states->path(s.saved_frame), s.state_bytes, s.saves, s.serialise_ms / n,
+                       s.write_ms / n, s.states->frames().size());
         }
       }
       return code;

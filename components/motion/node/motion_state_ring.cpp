@@ -1,0 +1,128 @@
+#include "motion_state_ring.hpp"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <cctype>
+#include <filesystem>
+
+#include <fmt/format.h>
+
+#include "motion_state_file.hpp"
+#include "uavmot/core/durable_file.hpp"
+#include "uavmot/core/error.hpp"
+
+namespace uavmot::motion {
+namespace fs = std::filesystem;
+namespace {
+
+// The frame in NAME when it is PREFIX + digits + SUFFIX.
+std::optional<int64_t> frame_in_name(const std::string& name, const std::string& prefix, const std::string& suffix) {
+  if (name.size() <= prefix.size() + suffix.size() || name.compare(0, prefix.size(), prefix) != 0 ||
+      name.compare(name.size() - suffix.size(), suffix.size(), suffix) != 0) {
+    return std::nullopt;
+  }
+  const std::string digits = name.substr(prefix.size(), name.size() - prefix.size() - suffix.size());
+  if (digits.size() > 18) return std::nullopt;
+  for (char c : digits) {
+    if (!std::isdigit(static_cast<unsigned char>(c))) return std::nullopt;
+  }
+  return std::stoll(digits);
+}
+
+// Makes removals in DIR durable (a folder that cannot be synced leaves it to the system, as
+// write_file_durably does).
+void sync_folder(const std::string& dir) {
+  const int fd = ::open(dir.empty() ? "." : dir.c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (fd < 0) return;
+  ::fsync(fd);
+  ::close(fd);
+}
+
+}  // namespace
+
+MotionStateRing::MotionStateRing(std::string dir, std::string stream, int keep)
+    : dir_(std::move(dir)), stream_(std::move(stream)), keep_(keep > 0 ? static_cast<size_t>(keep) : 0) {
+  if (keep < 1) throw InvalidArgument(fmt::format("motion states to keep per stream: {} (at least 1)", keep));
+  std::error_code ec;
+  for (fs::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
+    const std::string name = it->path().filename().string();
+    if (auto frame = frame_in_name(name, prefix(), ".bin"); frame && fs::path(path(*frame)).filename() == name) {
+      frames_.insert(*frame);  // only names as this ring writes them, which it can also remove
+    } else if (frame_in_name(name, prefix(), ".bin.tmp")) {
+      fs::remove(it->path(), ec);  // a write a crash cut short; the state before it is kept
+      ec.clear();
+    }
+  }
+}
+
+std::string MotionStateRing::prefix() const { return "motion_state_" + stream_ + "."; }
+
+std::string MotionStateRing::path(int64_t frame) const { return fmt::format("{}/{}{:010d}.bin", dir_, prefix(), frame); }
+
+std::string MotionStateRing::legacy_path() const { return dir_ + "/motion_state_" + stream_ + ".bin"; }
+
+void MotionStateRing::save(int64_t frame, const std::vector<uint8_t>& bytes) {
+  write_file_durably(path(frame), bytes);
+  frames_.insert(frame);
+  std::error_code ec;
+  bool removed_later = false;
+  while (*frames_.rbegin() != frame) {
+    fs::remove(path(*frames_.rbegin()), ec);
+    frames_.erase(std::prev(frames_.end()));
+    removed_later = true;
+  }
+  // A later state that came back after a power loss would be restored by the next launch.
+  if (removed_later) sync_folder(dir_);
+  // Older states removed without a sync: one that comes back is only removed again.
+  while (frames_.size() > keep_) {
+    fs::remove(path(*frames_.begin()), ec);
+    frames_.erase(frames_.begin());
+  }
+}
+
+std::optional<int64_t> MotionStateRing::adopt_legacy(const std::function<int64_t(const std::vector<uint8_t>&)>& frame_of) {
+  const auto bytes = load_state_file(legacy_path());
+  if (!bytes) return std::nullopt;
+  int64_t frame = 0;
+  try {
+    frame = frame_of(*bytes);
+  } catch (const InputError& e) {
+    throw InputError("motion state file '" + legacy_path() + "': " + e.what() + " (remove it to start this stream afresh)");
+  }
+  // Written as the ring's without removing later states: they may be the ones a new launch needs.
+  write_file_durably(path(frame), *bytes);
+  frames_.insert(frame);
+  fs::remove(legacy_path());
+  sync_folder(dir_);
+  return frame;
+}
+
+RestoreChoice restore_before(const MotionStateRing& ring, int64_t first_frame,
+                             const std::function<int64_t(const std::vector<uint8_t>&)>& restore) {
+  RestoreChoice choice;
+  const auto& frames = ring.frames();
+  for (auto it = frames.upper_bound(first_frame - 1); it != frames.end(); ++it) choice.newer.push_back(*it);
+  for (auto it = std::make_reverse_iterator(frames.upper_bound(first_frame - 1)); it != frames.rend(); ++it) {
+    const std::string file = ring.path(*it);
+    try {
+      const auto bytes = load_state_file(file);
+      if (!bytes) throw InputError("removed while motion started");
+      const int64_t held = restore(*bytes);
+      if (held != *it) throw InputError(fmt::format("holds frame {}, not the frame its name says", held));
+      choice.restored = *it;
+      return choice;
+    } catch (const InputError& e) {
+      choice.refused.push_back("'" + file + "': " + e.what());
+    }
+  }
+  if (!choice.refused.empty()) {
+    std::string all;
+    for (const auto& r : choice.refused) all += (all.empty() ? "" : "; ") + r;
+    throw InputError("no usable motion state before frame " + std::to_string(first_frame) + ": " + all +
+                     " (remove them to start this stream afresh)");
+  }
+  return choice;
+}
+
+}  // namespace uavmot::motion
