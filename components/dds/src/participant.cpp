@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cstdlib>
 #include <filesystem>
+#include <map>
 #include <mutex>
 #include <optional>
 #include <set>
@@ -123,26 +124,32 @@ class Participant::StreamIdFilterFactory final : public fdds::IContentFilterFact
 };
 #pragma GCC diagnostic pop
 
-// Logs samples a reader's history refused. REJECTED_BY_INSTANCES_LIMIT is the one that loses a
-// stream: the reader holds max_instances stream ids (alive ones are never evicted in Fast DDS
-// 2.9), and the refused sample is never resent.
+// Warns of samples a reader refused for its instance limit, the one rejection that loses a stream:
+// the reader holds max_instances stream ids (alive ones are never evicted in Fast DDS 2.9), and the
+// refused sample is never resent.
 class Participant::RejectLogger : public fdds::DataReaderListener {
  public:
   void on_sample_rejected(fdds::DataReader* reader, const fdds::SampleRejectedStatus& status) override {
-    const std::string topic = reader->get_topicdescription()->get_name();
-    // First of each reader, then every 100th: a flood must not flood the log.
-    if (status.total_count != 1 && status.total_count % 100 != 0) return;
-    if (status.last_reason == fdds::REJECTED_BY_INSTANCES_LIMIT) {
-      fdds::DataReaderQos qos = reader->get_qos();
-      spdlog::warn("{}: {} sample(s) of new stream ids rejected: this reader already holds {} stream ids (max_instances); "
-                   "those streams are lost to it. Forged ids on the network? Name the expected streams (--stream-id) "
-                   "so that others are filtered out first (docs/topics.md)",
-                   topic, status.total_count, qos.resource_limits().max_instances);
-    } else {
-      spdlog::warn("{}: {} sample(s) rejected by the reader's resource limits (reason {})", topic, status.total_count,
-                   static_cast<int>(status.last_reason));
+    // A full history (samples, samples per instance) is flow control: a reliable writer sends the
+    // sample again, and in lossless mode a busy reader fills its history all the time. Not a loss.
+    if (status.last_reason != fdds::REJECTED_BY_INSTANCES_LIMIT) return;
+    int64_t count = 0;
+    {
+      std::lock_guard<std::mutex> lock(mutex_);  // one listener serves every reader of the participant
+      count = ++instance_rejections_[reader];
     }
+    // First of each reader, then every 100th: a flood must not flood the log.
+    if (count != 1 && count % 100 != 0) return;
+    fdds::DataReaderQos qos = reader->get_qos();
+    spdlog::warn("{}: {} sample(s) of new stream ids rejected: this reader already holds {} stream ids (max_instances); "
+                 "those streams are lost to it. Forged ids on the network? Name the expected streams (--stream-id) "
+                 "so that others are filtered out first (docs/topics.md)",
+                 reader->get_topicdescription()->get_name(), count, qos.resource_limits().max_instances);
   }
+
+ private:
+  std::mutex mutex_;
+  std::map<const fdds::DataReader*, int64_t> instance_rejections_;
 };
 
 std::string default_profiles_file() {
