@@ -192,7 +192,7 @@ int source_main(int argc, char** argv) {
       const int64_t skipped_late = dropped_late + ahead.skipped_undecoded();
       auto eos = dds::end_of_stream_frame(input.stream_id, std::max(frame.index, ahead.last_index()) + index_offset);
       writer->write_reliably(eos, dds::end_of_stream_patience(node.dds.mode));
-      writer->settle(dds::end_of_stream_patience(node.dds.mode));
+      writer->flush(dds::end_of_stream_patience(node.dds.mode));
       health.report(exit_code == kExitOk ? msg::ComponentState::FINISHED : msg::ComponentState::FAILED);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       spdlog::info("published {} frames in {:.2f} s ({:.1f} fps){}{}", published, seconds, published / std::max(seconds, 1e-9),

@@ -55,15 +55,14 @@ inline std::chrono::seconds end_of_stream_patience(DeliveryMode mode) {
   return mode == DeliveryMode::Lossless ? std::chrono::seconds(60) : std::chrono::seconds(10);
 }
 
-// Passes the end of STREAM on (its last frame INDEX), waiting for the readers as end_of_stream_patience
-// says, until they have it (TopicWriter::settle).
+// Passes the end of STREAM on (its last frame INDEX), waiting for the readers as end_of_stream_patience says.
 template <class PubSubType>
 void write_end_of_stream(TopicWriter<PubSubType>& writer, const std::string& stream, int64_t index, DeliveryMode mode) {
   typename PubSubType::type eos;
   eos.stream_id(stream);
   eos.frame_index(index);
   eos.end_of_stream(true);
-  if (writer.write_reliably(eos, end_of_stream_patience(mode))) writer.settle(end_of_stream_patience(mode));
+  writer.write_reliably(eos, end_of_stream_patience(mode));
 }
 
 // Which streams have ended; a node exits when the expected number has.

@@ -1,7 +1,6 @@
 #pragma once
 // A typed DataWriter whose every write() result is checked.
 
-#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <functional>
@@ -75,28 +74,6 @@ class TopicWriter {
       }
     }
     return true;
-  }
-
-  // The end of a stream: waits until the required readers are matched and have acknowledged
-  // everything written, and starts again if one leaves meanwhile. A reader that dies just before the
-  // end still counts as matched until the middleware notices, so flush() alone would let this
-  // process exit and leave the respawned reader waiting for an end that never comes; this way it
-  // gets the end from the writer's (transient-local) history first. False on timeout or shutdown.
-  bool settle(std::chrono::milliseconds timeout) {
-    const auto deadline = std::chrono::steady_clock::now() + timeout;
-    auto remaining = [&] {
-      return std::max(std::chrono::milliseconds(0), std::chrono::duration_cast<std::chrono::milliseconds>(
-                                                        deadline - std::chrono::steady_clock::now()));
-    };
-    for (;;) {
-      if (matched() < required_readers_ && !wait_for_matched(required_readers_, remaining())) {
-        spdlog::error("{}: fewer than {} readers for {} ms at the end of the stream", topic_, required_readers_,
-                      timeout.count());
-        return false;
-      }
-      if (!flush(remaining())) return false;
-      if (matched() >= required_readers_) return true;
-    }
   }
 
   // Lossless publishing waits until at least this many readers are matched (at the start, and again
