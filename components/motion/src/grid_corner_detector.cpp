@@ -98,20 +98,35 @@ int detection_cell_size(const MotionOptions& o, cv::Size size) {
 
 namespace {
 
+// The detection grid over `gray` with the live features bucketed: what both detectors start from.
+struct DetectionGrid {
+  DetectionGrid(cv::Size size, const std::vector<cv::Point2f>& existing, const MotionOptions& o)
+      : cell(detection_cell_size(o, size)),
+        cols((size.width + cell - 1) / cell),
+        rows((size.height + cell - 1) / cell),
+        usable(o.border_px, o.border_px, size.width - 2 * o.border_px, size.height - 2 * o.border_px),
+        buckets(cols, rows, cell, o.min_distance_px) {
+    for (const auto& p : existing) buckets.add(p);
+  }
+  bool empty() const { return usable.width <= 0 || usable.height <= 0; }
+  // Cell `index`'s pixels away from the border (may be empty).
+  cv::Rect area(int index) const { return cv::Rect((index % cols) * cell, (index / cols) * cell, cell, cell) & usable; }
+
+  int cell, cols, rows;
+  cv::Rect usable;
+  CellBuckets buckets;
+};
+
 // Shared by both entry points; `retry_at` (may be null) holds the empty-cell back-off.
 std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
                                          const MotionOptions& o, std::vector<int64_t>* retry_at, int64_t call) {
   std::vector<cv::Point2f> added;
   int budget = o.max_features - static_cast<int>(existing.size());
   if (budget <= 0 || gray.empty()) return added;
-  const int cell = detection_cell_size(o, gray.size());
-  const int cols = (gray.cols + cell - 1) / cell;
-  const int rows = (gray.rows + cell - 1) / cell;
-  CellBuckets buckets(cols, rows, cell, o.min_distance_px);
-  for (const auto& p : existing) buckets.add(p);
-
-  const cv::Rect usable(o.border_px, o.border_px, gray.cols - 2 * o.border_px, gray.rows - 2 * o.border_px);
-  if (usable.width <= 0 || usable.height <= 0) return added;
+  DetectionGrid grid(gray.size(), existing, o);
+  if (grid.empty()) return added;
+  const int cols = grid.cols, rows = grid.rows;
+  CellBuckets& buckets = grid.buckets;
   // Emptiest neighbourhoods first: when the feature budget is smaller than the cells to fill, it
   // goes where the image is least covered (the edge where new ground enters), not to the cells
   // that come first in row-major order (which starved the bottom and right of large frames).
@@ -128,8 +143,7 @@ std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const std::vector<
   if (static_cast<int>(to_search.size()) > budget) std::stable_sort(to_search.begin(), to_search.end());
   for (const auto& [around, index] : to_search) {
     if (budget <= 0) break;
-    const int cx = index % cols, cy = index / cols;
-    const cv::Rect area = cv::Rect(cx * cell, cy * cell, cell, cell) & usable;
+    const cv::Rect area = grid.area(index);
     if (area.width <= 0 || area.height <= 0) continue;
     const auto candidates = cell_candidates(gray, area, o);
     bool placed = false;
@@ -164,16 +178,11 @@ std::vector<cv::Point2f> detect_changed_corners(const cv::Mat& gray, const cv::M
                                                 int budget) {
   std::vector<cv::Point2f> added;
   if (budget <= 0 || gray.empty() || changed.size() != gray.size()) return added;
-  const int cell = detection_cell_size(o, gray.size());
-  const int cols = (gray.cols + cell - 1) / cell;
-  const int rows = (gray.rows + cell - 1) / cell;
-  CellBuckets buckets(cols, rows, cell, o.min_distance_px);
-  for (const auto& p : existing) buckets.add(p);
-  const cv::Rect usable(o.border_px, o.border_px, gray.cols - 2 * o.border_px, gray.rows - 2 * o.border_px);
-  if (usable.width <= 0 || usable.height <= 0) return added;
+  DetectionGrid grid(gray.size(), existing, o);
+  if (grid.empty()) return added;
   std::vector<std::pair<int, int>> to_search;  // (-changed pixels, cell): most changed first
-  for (int index = 0; index < cols * rows; ++index) {
-    const cv::Rect area = cv::Rect((index % cols) * cell, (index / cols) * cell, cell, cell) & usable;
+  for (int index = 0; index < grid.cols * grid.rows; ++index) {
+    const cv::Rect area = grid.area(index);
     if (area.width <= 0 || area.height <= 0) continue;
     const int count = cv::countNonZero(changed(area));
     if (count > 0) to_search.emplace_back(-count, index);
@@ -181,13 +190,12 @@ std::vector<cv::Point2f> detect_changed_corners(const cv::Mat& gray, const cv::M
   std::sort(to_search.begin(), to_search.end());
   for (const auto& [minus_count, index] : to_search) {
     if (budget <= 0) break;
-    const cv::Rect area = cv::Rect((index % cols) * cell, (index / cols) * cell, cell, cell) & usable;
     int placed = 0;
-    for (const auto& c : cell_candidates(gray, area, o)) {
+    for (const auto& c : cell_candidates(gray, grid.area(index), o)) {
       if (!changed.at<uchar>(c.y, c.x)) continue;
       const cv::Point2f p(static_cast<float>(c.x), static_cast<float>(c.y));
-      if (!buckets.is_free(p)) continue;
-      buckets.add(p);
+      if (!grid.buckets.is_free(p)) continue;
+      grid.buckets.add(p);
       added.push_back(p);
       --budget;
       if (++placed >= o.change_features_per_cell || budget <= 0) break;
