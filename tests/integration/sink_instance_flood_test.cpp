@@ -19,6 +19,7 @@
 
 #include <gtest/gtest.h>
 
+#include "chain_samples.hpp"
 #include "child_process.hpp"
 #include "downlinkPubSubTypes.h"
 #include "motionPubSubTypes.h"
@@ -32,6 +33,9 @@
 namespace uavmot {
 namespace {
 using testing::binary;
+using testing::motion_of;
+using testing::segmentation_of;
+using testing::tracks_of;
 using testing::ChildProcess;
 
 constexpr int kForgedIds = 20;
@@ -168,28 +172,6 @@ TEST(SinkInstanceFlood, ForgedStreamIdsBeforeTheChainDoNotCrowdOutTheExpectedStr
   }
   const std::string homographies = testing::read_file(root + "/flooded/results/homographies.txt");
   EXPECT_EQ(std::count(homographies.begin(), homographies.end(), '\n'), 40) << "every frame";
-}
-
-// One frame of STREAM as the chain produces it (what the downlink joins and the ground writes).
-MotionEstimate motion_of(const std::string& stream, int64_t k) {
-  MotionEstimate m;
-  m.stream_id = stream;
-  m.frame_index = k;
-  m.image_width = 640;
-  m.image_height = 480;
-  return m;
-}
-SegmentationResult segmentation_of(const std::string& stream, int64_t k) {
-  SegmentationResult s;
-  s.stream_id = stream;
-  s.frame_index = k;
-  return s;
-}
-TrackList tracks_of(const std::string& stream, int64_t k) {
-  TrackList t;
-  t.stream_id = stream;
-  t.frame_index = k;
-  return t;
 }
 
 constexpr int kRealFrames = 8;

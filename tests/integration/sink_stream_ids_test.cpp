@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "chain_samples.hpp"
 #include "child_process.hpp"
 #include "downlinkPubSubTypes.h"
 #include "framePubSubTypes.h"
@@ -48,19 +49,9 @@ dds::DdsOptions options(int domain) {
   return o;
 }
 
-MotionEstimate motion(const std::string& stream, int64_t k) {
-  MotionEstimate m;
-  m.stream_id = stream;
-  m.frame_index = k;
-  m.image_width = 640;
-  m.image_height = 480;
-  return m;
-}
-
+// One confirmed track per frame, its id telling the streams apart.
 TrackList tracks(const std::string& stream, int64_t k) {
-  TrackList t;
-  t.stream_id = stream;
-  t.frame_index = k;
+  TrackList t = testing::tracks_of(stream, k);
   Track track;
   track.id = stream == "uav1" ? 1 : 99;
   track.state = TrackState::Confirmed;
@@ -123,7 +114,7 @@ TEST_F(SinkStreamIds, DownlinkSinkWritesOnlyTheBoundStream) {
 
   auto result = [&](const std::string& stream, int64_t k) {
     dds::FrameParts parts;
-    parts.motion = motion(stream, k);
+    parts.motion = testing::motion_of(stream, k);
     parts.tracks = tracks(stream, k);
     auto sample = dds::to_downlink_msg(stream, k, parts);
     ASSERT_TRUE(results->write_reliably(sample)) << stream;
@@ -203,7 +194,7 @@ TEST_F(SinkStreamIds, ChainSinkGivesTwoValidIdsAFolderEachAndNothingElse) {
   ASSERT_TRUE(track_lists->wait_for_matched(1, std::chrono::seconds(30)));
 
   auto frame = [&](const std::string& stream, int64_t k) {
-    auto m = dds::to_msg(motion(stream, k));
+    auto m = dds::to_msg(testing::motion_of(stream, k));
     ASSERT_TRUE(motions->write_reliably(m));
     SegmentationResult s;
     s.stream_id = stream;
@@ -214,7 +205,7 @@ TEST_F(SinkStreamIds, ChainSinkGivesTwoValidIdsAFolderEachAndNothingElse) {
     ASSERT_TRUE(track_lists->write_reliably(tm));
   };
   auto end = [&](const std::string& stream) {
-    auto m = dds::to_msg(motion(stream, 8));
+    auto m = dds::to_msg(testing::motion_of(stream, 8));
     m.end_of_stream(true);
     ASSERT_TRUE(motions->write_reliably(m));
     SegmentationResult s;
