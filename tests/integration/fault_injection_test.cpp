@@ -201,12 +201,11 @@ TEST_P(DownlinkFaultInjection, DownlinkFaultMidRun) {
   EXPECT_EQ(differing, "") << log << ground.log();
 }
 
-// SIGSTOP (DownlinkFault{SIGSTOP, 18}) is not in the list: the watchdog notices the hang, kills and
-// respawns the downlink, but in 3 runs of 3 on 2026-11-26 (main 4f38cc4 + the branches of session 13,
-// and branch inst2 alone) the respawned downlink's readers on the shared-memory-only air domain never
-// matched the air writers (motion: "waiting for 3 reader(s), 2 matched" for 60 s). The helper's two
-// earlier runs had passed. Cause not found (docs/launch.md, "Faults").
-INSTANTIATE_TEST_SUITE_P(Downlink, DownlinkFaultInjection, ::testing::Values(DownlinkFault{SIGKILL, 16}),
+// SIGSTOP: in session 13 the respawned downlink's readers on the shared-memory-only air domain never
+// matched the air writers in 3 runs of 3 (cause not found); on 2026-11-26 it passed 7 runs of 7
+// (docs/launch.md, "Faults").
+INSTANTIATE_TEST_SUITE_P(Downlink, DownlinkFaultInjection, ::testing::Values(DownlinkFault{SIGKILL, 16},
+                                                                             DownlinkFault{SIGSTOP, 18}),
                          signal_name_of);
 
 // Live mode: SIGKILL of each component while the source publishes at the camera's rate (25 fps,

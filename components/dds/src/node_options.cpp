@@ -30,6 +30,14 @@ void add_node_options(CLI::App& app, NodeOptions& options) {
       ->capture_default_str();
 }
 
+void add_upstream_timeout_option(CLI::App& app, double& timeout_s) {
+  app.add_option("--upstream-timeout", timeout_s,
+                 "give up (exit 1) when no writer of any input has been matched for this long, s (0: wait forever); "
+                 "for a restarted component whose stream may have ended meanwhile")
+      ->check(CLI::NonNegativeNumber)
+      ->capture_default_str();
+}
+
 void finalize(NodeOptions& options, const std::string& component) {
   options.dds.mode = parse_delivery_mode(options.mode);
   options.dds.participant_name = component;

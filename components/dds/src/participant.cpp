@@ -170,25 +170,6 @@ Participant::Participant(DdsOptions options) : options_(std::move(options)) {
   }
   qos.name(options_.participant_name + "@" + std::to_string(::getpid()));
   if (!options_.discovery_server.empty()) use_discovery_server(qos, options_.discovery_server);
-  std::optional<ParticipantIdLock> id_lock;
-  if (qos.wire_protocol().participant_id < 0 && uses_shared_memory(qos)) {
-    // Never take over the ports of a crashed process (see shm_ports.hpp).
-    id_lock.emplace(options_.domain_id);
-    int id = fresh_participant_id(options_.domain_id);
-    if (id < 0) {
-      if (const auto in_use = ports_in_use()) {
-        const int freed = reclaim_abandoned_ports(options_.domain_id, *in_use);
-        spdlog::info("domain {}: every participant id had left shared-memory ports; freed {} that no process holds",
-                     options_.domain_id, freed);
-        id = fresh_participant_id(options_.domain_id);
-      } else {
-        spdlog::warn("domain {}: every participant id has left shared-memory ports, and /proc does not show which "
-                     "are held; leaving the choice to Fast DDS (`fastdds shm clean` removes abandoned ones)",
-                     options_.domain_id);
-      }
-    }
-    qos.wire_protocol().participant_id = id;  // -1 (every id held by a live process): Fast DDS chooses
-  }
   for (const FlowLimit& limit : options_.flow_limits) {
     auto descriptor = std::make_shared<eprosima::fastdds::rtps::FlowControllerDescriptor>();
     descriptor->name = limit.name.c_str();  // options_ lives as long as the participant
@@ -199,12 +180,46 @@ Participant::Participant(DdsOptions options) : options_(std::move(options)) {
         static_cast<int32_t>(std::clamp<uint64_t>(limit.bits_per_second / 8 / 10, 1, 2147483647));
     qos.flow_controllers().push_back(descriptor);
   }
-  participant_ = factory->create_participant(options_.domain_id, qos);
-  id_lock.reset();  // its ports exist now
+  if (qos.wire_protocol().participant_id < 0 && uses_shared_memory(qos)) {
+    participant_ = create_on_fresh_ports(qos);
+  } else {
+    participant_ = factory->create_participant(options_.domain_id, qos);
+  }
   if (!participant_) throw InputError("cannot create a DDS participant on domain " + std::to_string(options_.domain_id));
   publisher_ = participant_->create_publisher(fdds::PUBLISHER_QOS_DEFAULT);
   subscriber_ = participant_->create_subscriber(fdds::SUBSCRIBER_QOS_DEFAULT);
   if (!publisher_ || !subscriber_) throw InputError("cannot create DDS publisher/subscriber");
+}
+
+// Never takes over the ports of a crashed process (see shm_ports.hpp). A participant id names the
+// participant's GUID in its process whatever the domain, so an id that another participant of this
+// process has (the downlink and the launcher's watchdog are on two domains) is refused by Fast DDS:
+// then the next fresh one.
+fdds::DomainParticipant* Participant::create_on_fresh_ports(fdds::DomainParticipantQos qos) {
+  auto* factory = fdds::DomainParticipantFactory::get_instance();
+  ParticipantIdLock id_lock(options_.domain_id);
+  std::set<int> taken_here;
+  for (int attempt = 0; attempt < 8; ++attempt) {
+    int id = fresh_participant_id(options_.domain_id, "/dev/shm", 120, taken_here);
+    if (id < 0) {
+      if (const auto in_use = ports_in_use()) {
+        const int freed = reclaim_abandoned_ports(options_.domain_id, *in_use);
+        spdlog::info("domain {}: every participant id had left shared-memory ports; freed {} that no process holds",
+                     options_.domain_id, freed);
+        id = fresh_participant_id(options_.domain_id, "/dev/shm", 120, taken_here);
+      } else {
+        spdlog::warn("domain {}: every participant id has left shared-memory ports, and /proc does not show which "
+                     "are held; leaving the choice to Fast DDS (`fastdds shm clean` removes abandoned ones)",
+                     options_.domain_id);
+      }
+    }
+    qos.wire_protocol().participant_id = id;  // -1 (every id held by a live process): Fast DDS chooses
+    if (auto* participant = factory->create_participant(options_.domain_id, qos)) return participant;
+    if (id < 0) return nullptr;
+    spdlog::debug("domain {}: participant id {} is taken in this process; trying the next", options_.domain_id, id);
+    taken_here.insert(id);
+  }
+  return nullptr;
 }
 
 void Participant::add_stream_id_reader(const std::string& type_name, StreamIdOf stream_id_of) {

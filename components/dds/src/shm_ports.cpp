@@ -52,7 +52,7 @@ std::pair<uint32_t, uint32_t> unicast_ports(int domain, int participant_id) {
   return {metatraffic, metatraffic + 1};
 }
 
-int fresh_participant_id(int domain, const std::string& shm_dir, int limit) {
+int fresh_participant_id(int domain, const std::string& shm_dir, int limit, const std::set<int>& skip) {
   auto used = [&](uint32_t port) {
     // The port's segment, or the lock file that outlives it.
     const std::string name = shm_dir + "/" + kPortPrefix + std::to_string(port);
@@ -60,6 +60,7 @@ int fresh_participant_id(int domain, const std::string& shm_dir, int limit) {
     return fs::exists(name, ec) || fs::exists(name + "_el", ec);
   };
   for (int id = 0; id < limit; ++id) {
+    if (skip.count(id)) continue;
     const auto [metatraffic, user] = unicast_ports(domain, id);
     if (!used(metatraffic) && !used(user)) return id;
   }

@@ -24,9 +24,9 @@ namespace uavmot::dds {
 // mapping, 7400 + 250 * domain + 10 (+ 1) + 2 * participant_id.
 std::pair<uint32_t, uint32_t> unicast_ports(int domain, int participant_id);
 
-// The lowest participant id below `limit` whose two unicast ports have no shared-memory segment in
-// `shm_dir`; -1 if every one has.
-int fresh_participant_id(int domain, const std::string& shm_dir = "/dev/shm", int limit = 120);
+// The lowest participant id below `limit`, not in `skip`, whose two unicast ports have no
+// shared-memory segment in `shm_dir`; -1 if every one has.
+int fresh_participant_id(int domain, const std::string& shm_dir = "/dev/shm", int limit = 120, const std::set<int>& skip = {});
 
 // The shared-memory ports that a live process holds open (a listener's lock file) or mapped (a
 // listener's segment or mutex, or one a writer pushes into), from /proc/<pid>/fd and /maps;

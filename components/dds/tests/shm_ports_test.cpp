@@ -39,6 +39,34 @@ TEST(ShmPorts, TheFirstIdWithoutAnySegmentOrLockFileIsChosen) {
   fs::remove_all(dir);
 }
 
+// An id another participant of this process has (on another domain) is skipped although its ports
+// on this domain are fresh.
+TEST(ShmPorts, IdsTakenInThisProcessAreSkipped) {
+  const fs::path dir = fs::temp_directory_path() / ("uavmot_shm_ports_skip_" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  EXPECT_EQ(fresh_participant_id(36, dir.string(), 120, {0}), 1);
+  EXPECT_EQ(fresh_participant_id(36, dir.string(), 120, {0, 1, 3}), 2);
+  EXPECT_EQ(fresh_participant_id(36, dir.string(), 2, {0, 1}), -1);
+  fs::remove_all(dir);
+}
+
+// Two participants in one process, one on a UDP-only domain (Fast DDS picks its id) and one with
+// shared memory on another domain (uavmot picks a fresh id): both are made, as the launcher's
+// watchdog needs when it watches the air chain and the downlink.
+TEST(ShmPorts, ParticipantsOnTwoDomainsInOneProcess) {
+  DdsOptions udp;
+  udp.domain_id = 37;
+  udp.participant_profile = "udp";
+  udp.participant_name = "udp_side";
+  DdsOptions local;
+  local.domain_id = 38;
+  local.participant_profile = "local";
+  local.participant_name = "shm_side";
+  Participant first(udp);
+  EXPECT_NO_THROW(Participant second(local));
+}
+
 // All three files Fast DDS keeps for a port.
 void leave_port_files(const fs::path& dir, uint32_t port) {
   const std::string name = "fastrtps_port" + std::to_string(port);

@@ -24,6 +24,7 @@ int downlink_main(int argc, char** argv) {
     app.add_flag("--resume", o.resume,
                  "a respawn: also take the air chain writers' recent history (the last 64 samples of each), so "
                  "what reached the killed downlink but not the ground is sent again (the ground sink skips repeats)");
+    dds::add_upstream_timeout_option(app, o.upstream_timeout_s);
     app.add_option("--preview-rate", preview.rate_hz, "JPEG previews of the frames per second (0: none)")
         ->check(CLI::NonNegativeNumber)->capture_default_str();
     app.add_option("--preview-width", preview.width, "preview width, px (height keeps the aspect ratio)")

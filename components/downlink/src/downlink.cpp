@@ -13,6 +13,7 @@
 #include "uavmot/core/shutdown.hpp"
 #include "uavmot/dds/health_partitions.hpp"
 #include "uavmot/dds/health_reporter.hpp"
+#include "uavmot/dds/upstream_watch.hpp"
 #include "uavmot/downlink/results_relay.hpp"
 
 namespace uavmot::downlink {
@@ -95,6 +96,7 @@ int run_downlink(DownlinkOptions o) {
   spdlog::info("domain {} ({}) -> domain {} ({}), {}, waiting for {} ground reader(s)", o.air_domain, o.air_transport,
                link_options.domain_id, link_options.participant_profile, o.link.mode, o.link.wait_subscribers);
 
+  dds::UpstreamWatch upstream(o.upstream_timeout_s);
   while (!shutdown_requested() && results.streams_ended() < o.streams) {
     const bool any = results.pump();
     msg::ComponentHealth report;
@@ -109,7 +111,14 @@ int run_downlink(DownlinkOptions o) {
     results.log_link_changes();
     health.set_bytes_out(results.writer().bytes_sent());
     health.tick();
-    if (!any) results.tracks().wait_for_data(std::chrono::milliseconds(50));
+    if (!any) {
+      if (upstream.gone(results.writers_matched())) {
+        spdlog::error("{}", upstream.message("the air chain's results"));
+        health.report(msg::ComponentState::FAILED);
+        return kExitFailure;
+      }
+      results.tracks().wait_for_data(std::chrono::milliseconds(50));
+    }
   }
   // Every frame before the end of stream was acknowledged before the next was written
   // (lossless); only the end of stream itself may be unacknowledged when the ground's reader

@@ -111,6 +111,7 @@ CLI::Validator states_kept_check() {
 
 int motion_main(int argc, char** argv) {
   dds::NodeOptions node;
+  double upstream_timeout_s = 0.0;
   config::NodeConfigArgs config_args;
   int streams = 1;
   std::string features = "all";
@@ -132,6 +133,7 @@ int motion_main(int argc, char** argv) {
                    "frames, e.g. the tracker's when motion had got further")
         ->check(states_kept_check())
         ->capture_default_str();
+    dds::add_upstream_timeout_option(app, upstream_timeout_s);
     dds::add_node_options(app, node);
     return [&]() -> int {
       dds::finalize(node, "motion");
@@ -157,7 +159,7 @@ int motion_main(int argc, char** argv) {
       // (the writer's last 8, transient-local): the first of them the state does not hold is next.
       const auto frames_class = state_dir.empty() ? dds::TopicClass::Frames : dds::TopicClass::FramesResume;
       Node single(participant,
-                  {"motion", dds::kFramesTopic, dds::kMotionTopic, frames_class, streams, node.wait_subscribers},
+                  {"motion", dds::kFramesTopic, dds::kMotionTopic, frames_class, streams, node.wait_subscribers, upstream_timeout_s},
                   [&](const std::string& stream, const Frame& frame) -> std::optional<msg::MotionEstimate> {
                     StreamMotion& s = estimator_for(stream, frame.index);
                     if (frame.index <= s.restored_frame) return std::nullopt;  // already in the restored state

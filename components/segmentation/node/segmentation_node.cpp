@@ -17,6 +17,7 @@ namespace {
 
 int segmentation_main(int argc, char** argv) {
   dds::NodeOptions node;
+  double upstream_timeout_s = 0.0;
   config::NodeConfigArgs config_args;
   std::string method;
   int streams = 1;
@@ -28,6 +29,7 @@ int segmentation_main(int argc, char** argv) {
     app.add_flag("--resume", resume,
                  "after a crash (lossless): also read the writers' recent history, so the frame that reached the killed "
                  "process but not its output comes again (the frames already segmented come again too: readers skip them)");
+    dds::add_upstream_timeout_option(app, upstream_timeout_s);
     dds::add_node_options(app, node);
     return [&]() -> int {
       dds::finalize(node, "segmentation");
@@ -41,7 +43,8 @@ int segmentation_main(int argc, char** argv) {
       Node paired(participant,
                   {"segmentation", dds::kFramesTopic, dds::kMotionTopic, dds::kSegmentationTopic,
                    resume ? dds::TopicClass::FramesResume : dds::TopicClass::Frames,
-                   resume ? dds::TopicClass::ChainResume : dds::TopicClass::Chain, streams, node.wait_subscribers},
+                   resume ? dds::TopicClass::ChainResume : dds::TopicClass::Chain, streams, node.wait_subscribers,
+                   upstream_timeout_s},
                   [&](const std::string& stream, int64_t, const Frame& frame, const MotionEstimate& motion) {
                     auto& segmenter = segmenters.try_emplace(stream, options, config.scene).first->second;
                     return std::optional(dds::to_msg(segmenter.process(frame, motion)));

@@ -41,6 +41,7 @@
 #include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/dds/node_support.hpp"
+#include "uavmot/dds/upstream_watch.hpp"
 #include "uavmot/geo/chain_ground.hpp"
 #include "uavmot/geo/track_map.hpp"
 #include "uavmot/sink/stream_gate.hpp"
@@ -52,7 +53,7 @@ namespace {
 
 struct SinkOptions {
   std::string out_dir;
-  double gsd_m = 0.0, fps = 25.0, idle_timeout_s = 0.0, stream_timeout_s = 0.0;
+  double gsd_m = 0.0, fps = 25.0, idle_timeout_s = 0.0, stream_timeout_s = 0.0, upstream_timeout_s = 0.0;
   int streams = 1;
   std::vector<std::string> stream_ids;  // --stream-id: only these
   bool downlink = false;
@@ -186,13 +187,16 @@ class ResultFolders {
   std::map<std::string, geo::TrackMapRecorder> track_maps_;
 };
 
-// Runs `drain` (true when it took anything) until `finished`, the idle timeout or shutdown. False
-// when a result file could not be written (logged): the run stops there, the files keep what was
-// written.
-template <class Drain, class Finished, class Wait>
-bool sink_loop(const SinkOptions& o, dds::HealthReporter& health, Drain drain, Finished finished, Wait wait) try {
+// Runs `drain` (true when it took anything) until `finished`, the idle timeout, the upstream
+// timeout or shutdown. False when the files must not be closed as a run: a result file could not be
+// written, or the writers are gone for good (both logged); the files keep what was written.
+// `writers` counts the writers matched on the inputs.
+template <class Drain, class Finished, class Wait, class Writers>
+bool sink_loop(const SinkOptions& o, dds::HealthReporter& health, Drain drain, Finished finished, Wait wait,
+               Writers writers) try {
   auto last_sample = std::chrono::steady_clock::now();
   bool started = false;
+  dds::UpstreamWatch upstream(o.upstream_timeout_s);
   while (!shutdown_requested() && !finished()) {
     const bool any = drain();
     health.tick();
@@ -202,6 +206,10 @@ bool sink_loop(const SinkOptions& o, dds::HealthReporter& health, Drain drain, F
       started = true;
     } else {
       wait();
+      if (upstream.gone(writers())) {
+        spdlog::error("{}", upstream.message("the results"));
+        return false;
+      }
       if (started && o.idle_timeout_s > 0 && now - last_sample > std::chrono::duration<double>(o.idle_timeout_s)) {
         spdlog::error("nothing arrived for {} s; closing the files with what was received", o.idle_timeout_s);
         break;
@@ -320,13 +328,14 @@ int run_chain_sink(dds::Participant& participant, const SinkOptions& o) {
     });
     give_up_silent_streams(liveness);
     return any;
-  }, finished, [&] { tracks->wait_for_data(std::chrono::milliseconds(50)); });
+  }, finished, [&] { tracks->wait_for_data(std::chrono::milliseconds(50)); },
+     [&] { return motion->matched() + segmentation->matched() + tracks->matched(); });
   // After a failed write no summary.json claims a complete run; the files keep their complete lines.
   const bool closed = written && folders.close(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   log_received(*motion);
   log_received(*segmentation);
   log_received(*tracks);
-  health.report(msg::ComponentState::FINISHED);
+  health.report(closed ? msg::ComponentState::FINISHED : msg::ComponentState::FAILED);
   return sink_exit_code(finished(), closed, gate, liveness);
 }
 
@@ -399,12 +408,13 @@ int run_downlink_sink(dds::Participant& participant, const SinkOptions& o) {
     return any;
   };
   auto finished = [&] { return static_cast<int>(ended.size() + liveness.lost_count()) >= o.streams; };
-  const bool written = sink_loop(o, health, drain, finished, [&] { results->wait_for_data(std::chrono::milliseconds(50)); });
+  const bool written = sink_loop(o, health, drain, finished, [&] { results->wait_for_data(std::chrono::milliseconds(50)); },
+                                 [&] { return results->matched(); });
   // After a failed write no summary.json claims a complete run; the files keep their complete lines.
   const bool closed = written && folders.close(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   log_received(*results);
   if (preview) log_received(preview->reader());
-  health.report(msg::ComponentState::FINISHED);
+  health.report(closed ? msg::ComponentState::FINISHED : msg::ComponentState::FAILED);
   return sink_exit_code(finished(), closed, gate, liveness);
 }
 
@@ -457,6 +467,7 @@ int sink_main(int argc, char** argv) {
                    "give up a stream (a UAV) that sent nothing for this long: the others go on, exit 1 at the end (s, 0 = wait "
                    "forever)")
         ->check(CLI::NonNegativeNumber);
+    dds::add_upstream_timeout_option(app, o.upstream_timeout_s);
     app.add_flag("--resume", o.resume,
                  "continue the unfinished run in --out after a crash or restart: keep its files (cut to whole frames) and "
                  "skip the frames they hold when they come again; refused for a finished run (summary.json)");

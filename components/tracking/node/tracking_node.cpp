@@ -31,6 +31,7 @@ struct StreamTracker {
 
 int tracking_main(int argc, char** argv) {
   dds::NodeOptions node;
+  double upstream_timeout_s = 0.0;
   config::NodeConfigArgs config_args;
   std::string state_dir;
   int streams = 1;
@@ -38,6 +39,7 @@ int tracking_main(int argc, char** argv) {
     config::add_node_config_options(app, config_args, "scene and tracking");
     app.add_option("--streams", streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
     app.add_option("--state-dir", state_dir, "save the tracker state here after every frame and restore it on start");
+    dds::add_upstream_timeout_option(app, upstream_timeout_s);
     dds::add_node_options(app, node);
     return [&]() -> int {
       dds::finalize(node, "tracking");
@@ -72,7 +74,7 @@ int tracking_main(int argc, char** argv) {
       const auto inputs = state_dir.empty() ? dds::TopicClass::Chain : dds::TopicClass::ChainResume;
       Node paired(participant,
                   {"tracking", dds::kMotionTopic, dds::kSegmentationTopic, dds::kTracksTopic, inputs, inputs, streams,
-                   node.wait_subscribers},
+                   node.wait_subscribers, upstream_timeout_s},
                   [&](const std::string& stream, int64_t index, const MotionEstimate& motion,
                       const SegmentationResult& segmentation) -> std::optional<msg::TrackList> {
                     StreamTracker& s = tracker_for(stream);

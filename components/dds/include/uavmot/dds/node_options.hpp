@@ -23,4 +23,8 @@ struct NodeOptions {
 void add_node_options(CLI::App& app, NodeOptions& options);
 void finalize(NodeOptions& options, const std::string& component);
 
+// Adds --upstream-timeout (seconds, 0 = wait forever; dds/upstream_watch.hpp) to a component that
+// reads the chain. The launch profiles pass it to respawned components only.
+void add_upstream_timeout_option(CLI::App& app, double& timeout_s);
+
 }  // namespace uavmot::dds

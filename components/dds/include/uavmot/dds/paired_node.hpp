@@ -16,6 +16,7 @@
 #include "uavmot/dds/frame_convert.hpp"
 #include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/dds/node_support.hpp"
+#include "uavmot/dds/upstream_watch.hpp"
 
 namespace uavmot::dds {
 
@@ -34,6 +35,7 @@ class PairedNode {
     TopicClass class_a, class_b;
     int streams = 1;
     int required_readers = 0;  // lossless: readers of the output to wait for
+    double upstream_timeout_s = 0.0;  // give up when no input has had a writer for this long (0: never)
   };
 
   PairedNode(Participant& participant, Spec spec, Process process, Published published = {})
@@ -44,6 +46,7 @@ class PairedNode {
         writer_(participant.make_writer<PubOut>(spec_.output, TopicClass::Chain)),
         health_(participant, spec_.component, "*"),
         ends_(spec_.streams),
+        upstream_(spec_.upstream_timeout_s),
         process_(std::move(process)),
         published_(std::move(published)) {
     if (mode_ == DeliveryMode::Lossless) writer_->set_required_readers(spec_.required_readers);
@@ -60,6 +63,7 @@ class PairedNode {
       health_.tick();
       bool any = take_all(*reader_a_, true, sample_a_) | take_all(*reader_b_, false, sample_b_);
       if (!any) {
+        if (upstream_.gone(reader_a_->matched() + reader_b_->matched())) return give_up();
         // Wait on the side that is behind (either would do; this keeps the wakeups few).
         reader_b_->wait_for_data(std::chrono::milliseconds(50));
         reader_a_->wait_for_data(std::chrono::milliseconds(1));
@@ -71,6 +75,12 @@ class PairedNode {
   }
 
  private:
+  int give_up() {
+    spdlog::error("{}", upstream_.message(spec_.input_a + " and " + spec_.input_b));
+    health_.report(msg::ComponentState::FAILED);
+    return 1;
+  }
+
   struct StreamState {
     FramePairing<A, B> pairing;
     bool ended_a = false, ended_b = false;
@@ -138,6 +148,7 @@ class PairedNode {
   std::unique_ptr<TopicWriter<PubOut>> writer_;
   HealthReporter health_;
   StreamEnds ends_;
+  UpstreamWatch upstream_;
   RejectLog rejects_;
   Process process_;
   Published published_;

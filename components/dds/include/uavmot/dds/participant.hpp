@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <fastdds/dds/domain/DomainParticipant.hpp>
+#include <fastdds/dds/domain/qos/DomainParticipantQos.hpp>
 #include <fastdds/dds/publisher/Publisher.hpp>
 #include <fastdds/dds/subscriber/Subscriber.hpp>
 #include <fastdds/dds/topic/Topic.hpp>
@@ -117,6 +118,7 @@ class Participant {
   }
 
  private:
+  eprosima::fastdds::dds::DomainParticipant* create_on_fresh_ports(eprosima::fastdds::dds::DomainParticipantQos qos);
   eprosima::fastdds::dds::Topic* topic_for(const std::string& name, eprosima::fastdds::dds::TypeSupport type);
   // `partition` "": the default partition.
   eprosima::fastdds::dds::DataWriter* create_writer(eprosima::fastdds::dds::Topic* topic, const std::string& profile,

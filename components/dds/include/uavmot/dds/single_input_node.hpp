@@ -16,6 +16,7 @@
 #include "uavmot/dds/frame_convert.hpp"
 #include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/dds/node_support.hpp"
+#include "uavmot/dds/upstream_watch.hpp"
 
 namespace uavmot::dds {
 
@@ -34,6 +35,7 @@ class SingleInputNode {
     TopicClass input_class;
     int streams = 1;           // exit after this many streams ended
     int required_readers = 0;  // lossless: readers of the output to wait for
+    double upstream_timeout_s = 0.0;  // give up when no input has had a writer for this long (0: never)
   };
 
   SingleInputNode(Participant& participant, Spec spec, Process process, Published published = {})
@@ -43,6 +45,7 @@ class SingleInputNode {
         writer_(participant.make_writer<PubOut>(spec_.output, TopicClass::Chain)),
         health_(participant, spec_.component, "*"),
         ends_(spec_.streams),
+        upstream_(spec_.upstream_timeout_s),
         process_(std::move(process)),
         published_(std::move(published)) {
     if (mode_ == DeliveryMode::Lossless) writer_->set_required_readers(spec_.required_readers);
@@ -56,7 +59,10 @@ class SingleInputNode {
     while (!shutdown_requested() && !ends_.all_ended()) {
       health_.set_queue_depth(static_cast<uint32_t>(reader_->unread()));
       health_.tick();
-      if (!reader_->wait_for_data(std::chrono::milliseconds(200))) continue;
+      if (!reader_->wait_for_data(std::chrono::milliseconds(200))) {
+        if (upstream_.gone(reader_->matched())) return give_up();
+        continue;
+      }
       while (reader_->take(sample_)) handle(sample_);
     }
     writer_->flush(end_of_stream_patience(mode_));
@@ -65,6 +71,12 @@ class SingleInputNode {
   }
 
  private:
+  int give_up() {
+    spdlog::error("{}", upstream_.message(spec_.input));
+    health_.report(msg::ComponentState::FAILED);
+    return 1;
+  }
+
   // Frames are read in place (no copy of the pixels): `sample_` is not taken into again before
   // process() has returned.
   static std::optional<In> read(typename PubIn::type& sample, std::string& why) {
@@ -113,6 +125,7 @@ class SingleInputNode {
   std::unique_ptr<TopicWriter<PubOut>> writer_;
   HealthReporter health_;
   StreamEnds ends_;
+  UpstreamWatch upstream_;
   RejectLog rejects_;
   Process process_;
   Published published_;

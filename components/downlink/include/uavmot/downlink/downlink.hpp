@@ -24,6 +24,7 @@ struct DownlinkOptions {
   // the last 64 samples each), so what reached its killed predecessor but not the link comes again
   // (the ground sink skips the frames it has).
   bool resume = false;
+  double upstream_timeout_s = 0.0;  // give up when the air chain's writers are gone this long (0: never)
   PreviewOptions preview;
 };
 

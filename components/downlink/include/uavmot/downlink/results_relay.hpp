@@ -37,6 +37,8 @@ class ResultsRelay {
   const dds::DownlinkDrops& drops() const { return drops_; }
   dds::TopicWriter<msg::FrameResultsPubSubType>& writer() { return *writer_; }
   dds::TopicReader<msg::TrackListPubSubType>& tracks() { return *tracks_; }
+  // Writers matched on the three inputs (dds/upstream_watch.hpp).
+  int writers_matched() const { return motion_->matched() + segmentation_->matched() + tracks_->matched(); }
 
   // Logs when the link's reader comes and goes (the link dropped, the ground restarted).
   void log_link_changes();
