@@ -55,6 +55,20 @@ TEST_P(UpstreamGone, GivesUpAfterTheTimeoutWithExit1) {
   EXPECT_NE(log.find("(--upstream-timeout): the stream ended before this process (re)started"), std::string::npos) << log;
 }
 
+// A timeout that is not a finite number >= 0 is refused before anything starts (NaN used to pass
+// CLI11's check and meant "wait forever").
+TEST(UpstreamTimeout, NotAFiniteNonNegativeNumberIsRefused) {
+  const std::string root = testing::fresh_dir("upstream_timeout_bad");
+  for (const std::string bad : {"nan", "inf", "-1", "soon"}) {
+    ChildProcess process({binary("uavmot-tracking"), "--domain", std::to_string(kDomain), "--upstream-timeout", bad},
+                         root + "/tracking_" + bad + ".log");
+    const auto code = process.wait(std::chrono::seconds(30));
+    ASSERT_TRUE(code.has_value()) << bad << "\n" << process.log();
+    EXPECT_NE(*code, 0) << bad << "\n" << process.log();  // CLI11's code for a refused value (105)
+    EXPECT_NE(process.log().find("--upstream-timeout: not a"), std::string::npos) << process.log();
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(ChainReaders, UpstreamGone,
                          ::testing::Values(Reader{"motion", {}}, Reader{"segmentation", {"--resume"}},
                                            Reader{"tracking", {}}, Reader{"sink", {"--out", "OUT", "--resume"}},

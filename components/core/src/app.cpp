@@ -1,5 +1,6 @@
 #include "uavmot/core/app.hpp"
 
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
@@ -10,6 +11,17 @@
 #include "uavmot/core/memory.hpp"
 
 namespace uavmot {
+
+CLI::Validator non_negative_finite() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(text, value)) return "not a number: " + text;
+        if (!std::isfinite(value) || value < 0.0) return "not a finite number >= 0: " + text;
+        return {};
+      },
+      "NONNEGATIVE", "NonNegativeFinite");
+}
 
 void apply_opencv_threads_from_environment() {
   const char* value = std::getenv("OPENCV_FOR_THREADS_NUM");

@@ -1,5 +1,6 @@
 #include "uavmot/dds/node_options.hpp"
 
+#include "uavmot/core/app.hpp"
 #include "uavmot/core/logging.hpp"
 #include "uavmot/core/memory.hpp"
 
@@ -34,7 +35,7 @@ void add_upstream_timeout_option(CLI::App& app, double& timeout_s) {
   app.add_option("--upstream-timeout", timeout_s,
                  "give up (exit 1) when no writer of any input has been matched for this long, s (0: wait forever); "
                  "for a restarted component whose stream may have ended meanwhile")
-      ->check(CLI::NonNegativeNumber)
+      ->check(non_negative_finite())
       ->capture_default_str();
 }
 

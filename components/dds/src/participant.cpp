@@ -199,14 +199,15 @@ fdds::DomainParticipant* Participant::create_on_fresh_ports(fdds::DomainParticip
   auto* factory = fdds::DomainParticipantFactory::get_instance();
   ParticipantIdLock id_lock(options_.domain_id);
   std::set<int> taken_here;
+  auto fresh_id = [&] { return fresh_participant_id(options_.domain_id, "/dev/shm", 120, taken_here); };
   for (int attempt = 0; attempt < 8; ++attempt) {
-    int id = fresh_participant_id(options_.domain_id, "/dev/shm", 120, taken_here);
+    int id = fresh_id();
     if (id < 0) {
       if (const auto in_use = ports_in_use()) {
         const int freed = reclaim_abandoned_ports(options_.domain_id, *in_use);
         spdlog::info("domain {}: every participant id had left shared-memory ports; freed {} that no process holds",
                      options_.domain_id, freed);
-        id = fresh_participant_id(options_.domain_id, "/dev/shm", 120, taken_here);
+        id = fresh_id();
       } else {
         spdlog::warn("domain {}: every participant id has left shared-memory ports, and /proc does not show which "
                      "are held; leaving the choice to Fast DDS (`fastdds shm clean` removes abandoned ones)",

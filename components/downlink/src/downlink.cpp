@@ -13,6 +13,7 @@
 #include "uavmot/core/shutdown.hpp"
 #include "uavmot/dds/health_partitions.hpp"
 #include "uavmot/dds/health_reporter.hpp"
+#include "uavmot/dds/node_support.hpp"
 #include "uavmot/dds/upstream_watch.hpp"
 #include "uavmot/downlink/results_relay.hpp"
 
@@ -113,9 +114,7 @@ int run_downlink(DownlinkOptions o) {
     health.tick();
     if (!any) {
       if (upstream.gone(results.writers_matched())) {
-        spdlog::error("{}", upstream.message("the air chain's results"));
-        health.report(msg::ComponentState::FAILED);
-        return kExitFailure;
+        return dds::give_up_on_upstream(upstream, health, "the air chain's results");
       }
       results.tracks().wait_for_data(std::chrono::milliseconds(50));
     }

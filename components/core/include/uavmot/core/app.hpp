@@ -26,6 +26,10 @@ using AppSetup = std::function<AppBody(CLI::App&)>;
 
 int run_app(int argc, char** argv, const std::string& name, const std::string& description, const AppSetup& setup);
 
+// A finite number >= 0 (seconds, a rate). CLI11's NonNegativeNumber lets "nan" and "inf" through,
+// since every comparison with NaN is false: a NaN timeout then silently meant "wait forever".
+CLI::Validator non_negative_finite();
+
 // OPENCV_FOR_THREADS_NUM=N (1..256) as cv::setNumThreads(N); run_app calls it first. OpenCV 4.6's
 // TBB backend ignores the variable on its own: its workers stay, spin after every parallel_for_
 // (connectedComponents, resize, ...), and took a third of the segmentation process's CPU time in

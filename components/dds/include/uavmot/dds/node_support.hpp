@@ -11,9 +11,11 @@
 
 #include <spdlog/spdlog.h>
 
+#include "uavmot/core/app.hpp"
 #include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/dds/topic_writer.hpp"
 #include "uavmot/dds/topics.hpp"
+#include "uavmot/dds/upstream_watch.hpp"
 
 namespace uavmot::dds {
 
@@ -46,6 +48,14 @@ void publish_frame_output(TopicWriter<PubSubType>& writer, typename PubSubType::
   if (published) published(stream, index);
   health.frame_out(index, process_ms, latency_ms_since(capture_time_ns));
   health.set_bytes_out(writer.bytes_sent());
+}
+
+// A component whose inputs have had no writer for the upstream timeout: says why, reports FAILED,
+// and returns the exit code (dds/upstream_watch.hpp).
+inline int give_up_on_upstream(const UpstreamWatch& upstream, HealthReporter& health, const std::string& inputs) {
+  spdlog::error("{}", upstream.message(inputs));
+  health.report(msg::ComponentState::FAILED);
+  return kExitFailure;
 }
 
 // How long an end of stream (and the flush after it) may wait for the readers: in lossless mode as

@@ -16,7 +16,6 @@
 #include "uavmot/dds/frame_convert.hpp"
 #include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/dds/node_support.hpp"
-#include "uavmot/dds/upstream_watch.hpp"
 
 namespace uavmot::dds {
 
@@ -63,7 +62,9 @@ class PairedNode {
       health_.tick();
       bool any = take_all(*reader_a_, true, sample_a_) | take_all(*reader_b_, false, sample_b_);
       if (!any) {
-        if (upstream_.gone(reader_a_->matched() + reader_b_->matched())) return give_up();
+        if (upstream_.gone(reader_a_->matched() + reader_b_->matched())) {
+          return give_up_on_upstream(upstream_, health_, spec_.input_a + " and " + spec_.input_b);
+        }
         // Wait on the side that is behind (either would do; this keeps the wakeups few).
         reader_b_->wait_for_data(std::chrono::milliseconds(50));
         reader_a_->wait_for_data(std::chrono::milliseconds(1));
@@ -75,12 +76,6 @@ class PairedNode {
   }
 
  private:
-  int give_up() {
-    spdlog::error("{}", upstream_.message(spec_.input_a + " and " + spec_.input_b));
-    health_.report(msg::ComponentState::FAILED);
-    return 1;
-  }
-
   struct StreamState {
     FramePairing<A, B> pairing;
     bool ended_a = false, ended_b = false;

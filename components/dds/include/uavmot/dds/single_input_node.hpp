@@ -16,7 +16,6 @@
 #include "uavmot/dds/frame_convert.hpp"
 #include "uavmot/dds/health_reporter.hpp"
 #include "uavmot/dds/node_support.hpp"
-#include "uavmot/dds/upstream_watch.hpp"
 
 namespace uavmot::dds {
 
@@ -60,7 +59,7 @@ class SingleInputNode {
       health_.set_queue_depth(static_cast<uint32_t>(reader_->unread()));
       health_.tick();
       if (!reader_->wait_for_data(std::chrono::milliseconds(200))) {
-        if (upstream_.gone(reader_->matched())) return give_up();
+        if (upstream_.gone(reader_->matched())) return give_up_on_upstream(upstream_, health_, spec_.input);
         continue;
       }
       while (reader_->take(sample_)) handle(sample_);
@@ -71,12 +70,6 @@ class SingleInputNode {
   }
 
  private:
-  int give_up() {
-    spdlog::error("{}", upstream_.message(spec_.input));
-    health_.report(msg::ComponentState::FAILED);
-    return 1;
-  }
-
   // Frames are read in place (no copy of the pixels): `sample_` is not taken into again before
   // process() has returned.
   static std::optional<In> read(typename PubIn::type& sample, std::string& why) {

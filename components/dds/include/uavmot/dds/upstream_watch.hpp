@@ -7,6 +7,8 @@
 #include <chrono>
 #include <string>
 
+#include <fmt/format.h>
+
 namespace uavmot::dds {
 
 class UpstreamWatch {
@@ -34,9 +36,9 @@ class UpstreamWatch {
 
   // The error a component logs when it gives up (one wording for every component).
   std::string message(const std::string& inputs) const {
-    return "no writer of " + inputs + " for " + std::to_string(static_cast<int>(timeout_s())) +
-           " s (--upstream-timeout): the stream ended before this process (re)started and nothing more can arrive; "
-           "giving up with what was written";
+    return fmt::format("no writer of {} for {:g} s (--upstream-timeout): the stream ended before this process "
+                       "(re)started and nothing more can arrive; giving up with what was written",
+                       inputs, timeout_s());
   }
 
  private:
