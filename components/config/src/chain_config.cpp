@@ -1,5 +1,7 @@
 #include "uavmot/config/chain_config.hpp"
 
+#include "uavmot/core/app.hpp"
+
 namespace uavmot::config {
 
 ChainConfig::ChainConfig(const ConfigNode& root) : root_(root) {
@@ -11,8 +13,8 @@ ChainConfig ChainConfig::load_file(const std::string& file) { return ChainConfig
 
 void add_node_config_options(CLI::App& app, NodeConfigArgs& args, const std::string& sections) {
   app.add_option("--config", args.file, "chain configuration YAML (uses sections " + sections + ")");
-  app.add_option("--gsd", args.gsd_m, "ground sampling distance, m/px")->check(CLI::PositiveNumber);
-  app.add_option("--fps", args.fps, "frame rate")->check(CLI::PositiveNumber);
+  app.add_option("--gsd", args.gsd_m, "ground sampling distance, m/px")->check(uavmot::positive_finite());
+  app.add_option("--fps", args.fps, "frame rate")->check(uavmot::positive_finite());
 }
 
 ChainConfig load_node_config(const NodeConfigArgs& args) {

@@ -12,16 +12,25 @@
 
 namespace uavmot {
 
-CLI::Validator non_negative_finite() {
+namespace {
+
+CLI::Validator finite_number_validator(bool allow_zero) {
+  const std::string bound = allow_zero ? ">= 0" : "> 0";
   return CLI::Validator(
-      [](std::string& text) -> std::string {
+      [allow_zero, bound](std::string& text) -> std::string {
         double value = 0.0;
         if (!CLI::detail::lexical_cast(text, value)) return "not a number: " + text;
-        if (!std::isfinite(value) || value < 0.0) return "not a finite number >= 0: " + text;
+        const bool in_range = allow_zero ? value >= 0.0 : value > 0.0;
+        if (!std::isfinite(value) || !in_range) return "not a finite number " + bound + ": " + text;
         return {};
       },
-      "NONNEGATIVE", "NonNegativeFinite");
+      allow_zero ? "NONNEGATIVE" : "POSITIVE", allow_zero ? "NonNegativeFinite" : "PositiveFinite");
 }
+
+}  // namespace
+
+CLI::Validator non_negative_finite() { return finite_number_validator(true); }
+CLI::Validator positive_finite() { return finite_number_validator(false); }
 
 void apply_opencv_threads_from_environment() {
   const char* value = std::getenv("OPENCV_FOR_THREADS_NUM");
@@ -50,7 +59,9 @@ int run_app(int argc, char** argv, const std::string& name, const std::string& d
     app.parse(argc, argv);
     return body();
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    // --help and --version exit 0; every refused argument exits kExitBadInput like a bad
+    // configuration file, not with CLI11's own codes (105, 106, ...).
+    return app.exit(e) == 0 ? kExitOk : kExitBadInput;
   } catch (const InputError& e) {
     std::cerr << "uavmot " << name << ": error: " << e.what() << "\n";
     return kExitBadInput;

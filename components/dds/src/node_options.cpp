@@ -20,7 +20,7 @@ void add_node_options(CLI::App& app, NodeOptions& options) {
       ->capture_default_str();
   group->add_option("--wait-subscribers", options.wait_subscribers,
                     "lossless: publish only while this many readers of the output are matched")
-      ->check(CLI::NonNegativeNumber)
+      ->check(uavmot::non_negative_finite())
       ->capture_default_str();
   app.add_option("--heap-reserve-mb", options.heap_reserve_mb,
                  "heap faulted in at start, so the first frames do not wait for page faults (0: none)")

@@ -39,8 +39,8 @@ int eval_main(int argc, char** argv) {
                    "Table I: a box belongs to an object when it covers at least this share of the object area")->check(CLI::Range(0.01, 1.0));
     app.add_option("--min-box-on-object", options.min_box_on_object,
                    "Table I: ... or when at least this share of the box lies on the object")->check(CLI::Range(0.01, 1.0));
-    app.add_option("--first-frame", options.first_frame, "first frame to score")->check(CLI::NonNegativeNumber);
-    app.add_option("--last-frame", options.last_frame, "last frame to score")->check(CLI::NonNegativeNumber);
+    app.add_option("--first-frame", options.first_frame, "first frame to score")->check(uavmot::non_negative_finite());
+    app.add_option("--last-frame", options.last_frame, "last frame to score")->check(uavmot::non_negative_finite());
     return [&]() -> int {
       if (seq_dir.empty()) throw InputError("give --seq DIR");
       if (recording.empty() && files.tracks.empty() && files.oriented.empty()) {

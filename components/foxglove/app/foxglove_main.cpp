@@ -227,16 +227,16 @@ int foxglove_main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--image-fps", image_fps,
                    "most images a second on uavmot/foxglove/image, evenly spaced (encoding costs the chain CPU); 0: every frame")
-        ->check(CLI::NonNegativeNumber)
+        ->check(uavmot::non_negative_finite())
         ->capture_default_str();
     app.add_option("--gsd", options.style.gsd_m, "ground sampling distance, m/px (> 0: track labels in km/h)")
-        ->check(CLI::NonNegativeNumber);
-    app.add_option("--fps", options.style.fps, "frame rate, for km/h")->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(uavmot::non_negative_finite());
+    app.add_option("--fps", options.style.fps, "frame rate, for km/h")->check(uavmot::positive_finite())->capture_default_str();
     app.add_option("--client-buffer-mb", client_buffer_mb, "MiB queued per viewer before its messages are dropped")
-        ->check(CLI::PositiveNumber)
+        ->check(uavmot::positive_finite())
         ->capture_default_str();
     app.add_option("--duration", duration_s, "stop after this many seconds (default: until Ctrl-C / SIGTERM)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(uavmot::non_negative_finite());
     dds::add_node_options(app, node);
     return [&]() -> int {
       dds::finalize(node, "foxglove");

@@ -119,7 +119,7 @@ int motion_main(int argc, char** argv) {
   int state_keep = motion::kDefaultStatesKept;
   return run_app(argc, argv, "motion", "estimate camera motion and independently moving features (frames -> motion)", [&](CLI::App& app) {
     config::add_node_config_options(app, config_args, "scene and motion");
-    app.add_option("--streams", streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--streams", streams, "exit after this many streams ended")->check(uavmot::positive_finite())->capture_default_str();
     app.add_option("--features", features,
                    "features to publish: all, or only the moving ones (all that segmentation and tracking use; "
                    "about 7x fewer bytes on a downlink)")

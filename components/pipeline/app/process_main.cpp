@@ -47,10 +47,10 @@ int process_main(int argc, char** argv) {
     app.add_option("--segmentation", method, segmentation_method_choices() + " (default from config: fusion)")
         ->check(CLI::IsMember(segmentation_method_names()));
     app.add_option("--gsd", gsd_m, "ground sampling distance, m/px (default: seqinfo.ini gsd, else KLV metadata, else config, else 0.35)")
-        ->check(CLI::PositiveNumber);
-    app.add_option("--fps", fps, "frame rate (default: the input's; a CLIF folder's from its ../pos GPS times)")->check(CLI::PositiveNumber);
-    app.add_option("--start", input.start_frame, "first input frame (1-based)")->check(CLI::PositiveNumber);
-    app.add_option("--count", input.max_frames, "number of frames (0 = all)")->check(CLI::NonNegativeNumber);
+        ->check(uavmot::positive_finite());
+    app.add_option("--fps", fps, "frame rate (default: the input's; a CLIF folder's from its ../pos GPS times)")->check(uavmot::positive_finite());
+    app.add_option("--start", input.start_frame, "first input frame (1-based)")->check(uavmot::positive_finite());
+    app.add_option("--count", input.max_frames, "number of frames (0 = all)")->check(uavmot::non_negative_finite());
     app.add_option("--stream-id", input.stream_id, "stream id written into every result")->capture_default_str();
     app.add_option("--video", video_file, "also write the annotated video (paper Fig. 6) to this mp4 file");
     app.add_option("--threads", threads,

@@ -171,11 +171,11 @@ int record_main(int argc, char** argv) {
         ->check(CLI::IsMember({"zstd", "lz4", "none"}))
         ->capture_default_str();
     app.add_option("--duration", duration_s, "stop after this many seconds (default: until Ctrl-C / SIGTERM)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(uavmot::non_negative_finite());
     app.add_option("--queue-mb", queue_mb, "MiB of samples waiting for the disk before the recorder holds back")
-        ->check(CLI::PositiveNumber)
+        ->check(uavmot::positive_finite())
         ->capture_default_str();
-    app.add_option("--chunk-kb", chunk_kb, "MCAP chunk size, KiB")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--chunk-kb", chunk_kb, "MCAP chunk size, KiB")->check(uavmot::positive_finite())->capture_default_str();
     app.add_flag("--foxglove,!--no-foxglove", with_foxglove,
                  "also write Foxglove-schema channels: uavmot/foxglove/image, tracks, regions, features (docs/foxglove.md)")
         ->capture_default_str();
@@ -186,8 +186,8 @@ int record_main(int argc, char** argv) {
         ->check(CLI::Range(1, 100))
         ->capture_default_str();
     app.add_option("--gsd", foxglove_options.style.gsd_m, "ground sampling distance, m/px (> 0: track labels in km/h)")
-        ->check(CLI::NonNegativeNumber);
-    app.add_option("--fps", foxglove_options.style.fps, "frame rate, for km/h")->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(uavmot::non_negative_finite());
+    app.add_option("--fps", foxglove_options.style.fps, "frame rate, for km/h")->check(uavmot::positive_finite())->capture_default_str();
     app.add_option("--recover", recover_input, "make a valid MCAP of a crashed recording (FILE.mcap.tmp) and exit");
     dds::add_node_options(app, node);
     return [&]() -> int {

@@ -103,10 +103,10 @@ int replay_main(int argc, char** argv) {
     app.add_flag("--info", info_only, "print what the recording holds (topics, types, counts, duration) and exit");
     app.add_option("--topics", topics, "topics or wildcard patterns to replay (default: every recorded uavmot topic)");
     app.add_option("--exclude", exclude, "topics or wildcard patterns not to replay");
-    app.add_option("--rate", rate, "playback speed factor on the recorded timing")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--rate", rate, "playback speed factor on the recorded timing")->check(uavmot::positive_finite())->capture_default_str();
     app.add_flag("--loop", loop, "start over at the end");
-    app.add_option("--start-offset", start_offset_s, "skip this many seconds from the start")->check(CLI::NonNegativeNumber);
-    app.add_option("--duration", duration_s, "replay only this many seconds (from the start offset)")->check(CLI::PositiveNumber);
+    app.add_option("--start-offset", start_offset_s, "skip this many seconds from the start")->check(uavmot::non_negative_finite());
+    app.add_option("--duration", duration_s, "replay only this many seconds (from the start offset)")->check(uavmot::positive_finite());
     app.add_flag("--lossless", lossless,
                  "ignore the timing: publish as fast as the subscribers take it, nothing dropped (with --wait-subscribers)");
     app.add_option("--topic-subscribers", topic_subscribers,

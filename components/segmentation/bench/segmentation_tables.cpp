@@ -12,6 +12,7 @@
 #include <opencv2/core.hpp>
 
 #include "sim_tables.hpp"
+#include "uavmot/core/app.hpp"
 #include "uavmot/segmentation/segmentation_options.hpp"
 
 int main(int argc, char** argv) {
@@ -23,7 +24,7 @@ int main(int argc, char** argv) {
   bool truth_features = false;
   app.add_option("--preset", presets, "simulator preset (repeatable)")->required();
   app.add_option("--seed", seed, "simulator seed");
-  app.add_option("--frames", frames, "frames per sequence (0 = the preset's length)")->check(CLI::NonNegativeNumber);
+  app.add_option("--frames", frames, "frames per sequence (0 = the preset's length)")->check(uavmot::non_negative_finite());
   app.add_flag("--truth-features", truth_features,
                "ideal moving features from the ground truth instead of the motion layer");
   app.add_option("--config", config, "YAML file with a `segmentation:` section (defaults otherwise)");

@@ -25,7 +25,7 @@ int segmentation_main(int argc, char** argv) {
   return run_app(argc, argv, "segmentation", "segment moving objects (frames + motion -> clusters and regions)", [&](CLI::App& app) {
     config::add_node_config_options(app, config_args, "scene and segmentation");
     app.add_option("--segmentation", method, segmentation_method_choices())->check(CLI::IsMember(segmentation_method_names()));
-    app.add_option("--streams", streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--streams", streams, "exit after this many streams ended")->check(uavmot::positive_finite())->capture_default_str();
     app.add_flag("--resume", resume,
                  "after a crash (lossless): also read the writers' recent history, so the frame that reached the killed "
                  "process but not its output comes again (the frames already segmented come again too: readers skip them)");

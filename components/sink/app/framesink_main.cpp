@@ -36,7 +36,7 @@ int framesink_main(int argc, char** argv) {
   return run_app(argc, argv, "framesink", "write received frames (checksums, optionally images)", [&](CLI::App& app) {
     app.add_option("--out", out_dir, "output folder (frames.csv, images/)")->required();
     app.add_flag("--save-images", save_images, "also write every frame as PNG");
-    app.add_option("--streams", streams, "end after this many streams sent end-of-stream")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--streams", streams, "end after this many streams sent end-of-stream")->check(uavmot::positive_finite())->capture_default_str();
     app.add_option("--idle-timeout", idle_timeout_s, "fail if no sample arrives for this long (s)")->capture_default_str();
     dds::add_node_options(app, node);
 

@@ -447,13 +447,13 @@ int sink_main(int argc, char** argv) {
   SinkOptions o;
   return run_app(argc, argv, "sink", "write the chain's results to files (motion, segmentation, tracks -> tracks.txt ...)", [&](CLI::App& app) {
     app.add_option("--out", o.out_dir, "output folder (one sub-folder per stream when --streams > 1)")->required();
-    app.add_option("--gsd", o.gsd_m, "ground sampling distance, m/px: adds metric columns")->check(CLI::PositiveNumber);
+    app.add_option("--gsd", o.gsd_m, "ground sampling distance, m/px: adds metric columns")->check(uavmot::positive_finite());
     auto* fps_option = app.add_option("--fps", o.fps, "frame rate, for speeds (with --metadata: default the video's)")
-                           ->check(CLI::PositiveNumber)
+                           ->check(uavmot::positive_finite())
                            ->capture_default_str();
     auto* streams_option =
         app.add_option("--streams", o.streams, "write up to this many streams (the first valid ids that arrive); exit after they ended")
-            ->check(CLI::PositiveNumber)
+            ->check(uavmot::positive_finite())
             ->capture_default_str();
     // Comma-separated too, and "" for none: a launch profile passes its ids as one variable
     // (bringup/ground.yaml's stream_ids), which may be empty.
@@ -466,7 +466,7 @@ int sink_main(int argc, char** argv) {
     app.add_option("--stream-timeout", o.stream_timeout_s,
                    "give up a stream (a UAV) that sent nothing for this long: the others go on, exit 1 at the end (s, 0 = wait "
                    "forever)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(uavmot::non_negative_finite());
     dds::add_upstream_timeout_option(app, o.upstream_timeout_s);
     app.add_flag("--resume", o.resume,
                  "continue the unfinished run in --out after a crash or restart: keep its files (cut to whole frames) and "

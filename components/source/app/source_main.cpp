@@ -37,20 +37,20 @@ int source_main(int argc, char** argv) {
   return run_app(argc, argv, "source", "publish frames of a video, image folder or MOTChallenge sequence", [&](CLI::App& app) {
     app.add_option("input", input.path, "video file, image folder or MOTChallenge sequence folder")->required();
     app.add_option("--stream-id", input.stream_id, "key of this stream (one per UAV)")->capture_default_str();
-    app.add_option("--start", input.start_frame, "first input frame (1-based)")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--start", input.start_frame, "first input frame (1-based)")->check(uavmot::positive_finite())->capture_default_str();
     app.add_option("--first-index", first_index,
                    "number the published frames from this index (a run that continues an earlier one, e.g. with --start: "
                    "a restored tracker skips the frames its state already holds)")
-        ->check(CLI::PositiveNumber)
+        ->check(uavmot::positive_finite())
         ->capture_default_str();
     app.add_option("--state-dir", state_dir,
                    "save the index of every frame published here; on start, continue from the last one saved (sent "
                    "again: it may not have arrived; readers skip what they have). For a respawned source");
-    app.add_option("--count", input.max_frames, "number of frames (0 = all)")->check(CLI::NonNegativeNumber)->capture_default_str();
+    app.add_option("--count", input.max_frames, "number of frames (0 = all)")->check(uavmot::non_negative_finite())->capture_default_str();
     app.add_flag("--loop", input.loop, "start again after the last frame");
     app.add_option("--color", color, "gray or color")->check(CLI::IsMember({"gray", "color"}))->capture_default_str();
     app.add_flag("--skip-corrupt", input.skip_corrupt, "skip undecodable images with a warning instead of failing");
-    auto* rate = app.add_option("--rate", rate_hz, "publish at this rate (Hz); frames are timestamped at it")->check(CLI::PositiveNumber);
+    auto* rate = app.add_option("--rate", rate_hz, "publish at this rate (Hz); frames are timestamped at it")->check(uavmot::positive_finite());
     app.add_flag("--native", native_rate, "publish at the input's own frame rate (default in live mode)")->excludes(rate);
     app.add_option("--wait-timeout", wait_timeout_s, "seconds to wait for subscribers")->capture_default_str();
     node.wait_subscribers = 1;

@@ -71,11 +71,11 @@ int status_main(int argc, char** argv) {
                  [&](CLI::App& app) {
     app.add_flag("--once", once, "print one table after --wait seconds of discovery and exit (1 if nothing reported)");
     app.add_flag("--json", json, "JSON instead of text: one array per table (JSON Lines when repeating)");
-    app.add_option("--interval", interval_s, "seconds between tables")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--interval", interval_s, "seconds between tables")->check(uavmot::positive_finite())->capture_default_str();
     app.add_option("--wait", wait_s, "--once: seconds to discover components and collect reports")
-        ->check(CLI::NonNegativeNumber)->capture_default_str();
+        ->check(uavmot::non_negative_finite())->capture_default_str();
     app.add_option("--stale", stale_s, "a component with no report for this long is marked stale (s)")
-        ->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(uavmot::positive_finite())->capture_default_str();
     dds::add_node_options(app, node);
     return [&]() -> int {
       dds::finalize(node, "status");

@@ -37,7 +37,7 @@ int tracking_main(int argc, char** argv) {
   int streams = 1;
   return run_app(argc, argv, "tracking", "track moving objects (motion + segmentation -> tracks)", [&](CLI::App& app) {
     config::add_node_config_options(app, config_args, "scene and tracking");
-    app.add_option("--streams", streams, "exit after this many streams ended")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--streams", streams, "exit after this many streams ended")->check(uavmot::positive_finite())->capture_default_str();
     app.add_option("--state-dir", state_dir, "save the tracker state here after every frame and restore it on start");
     dds::add_upstream_timeout_option(app, upstream_timeout_s);
     dds::add_node_options(app, node);

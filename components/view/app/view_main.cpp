@@ -24,13 +24,13 @@ int view_main(int argc, char** argv) {
         ->capture_default_str();
     app.add_flag("--window", o.window, "show a window (needs $DISPLAY)");
     app.add_option("--gsd", o.overlay.gsd_m, "ground sampling distance, m/px: speeds in km/h (else px/frame)")
-        ->check(CLI::PositiveNumber);
+        ->check(uavmot::positive_finite());
     app.add_option("--fps", o.overlay.fps, "frame rate: time label, km/h and the mp4's rate")
-        ->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(uavmot::positive_finite())->capture_default_str();
     app.add_option("--stream-id", o.stream, "draw only this stream (default: the first one seen)");
     app.add_option("--scale", o.overlay.scale, "output size / frame size")->check(CLI::Range(0.05, 8.0))->capture_default_str();
     app.add_option("--vector-scale", o.overlay.vector_scale, "feature velocity arrows span this many frames")
-        ->check(CLI::PositiveNumber)->capture_default_str();
+        ->check(uavmot::positive_finite())->capture_default_str();
     app.add_flag("--stationary", o.overlay.stationary_features, "also draw stationary features (small red dots)");
     lag_option = app.add_option("--max-lag", o.max_lag, "draw a frame without its tracks once it is this many frames old (live; lossless: 250)")
                      ->check(CLI::Range(0, 1000))
@@ -38,10 +38,10 @@ int view_main(int argc, char** argv) {
     linger_option = app.add_option("--linger", o.linger_s,
                                    "after the frames ended, wait this long for the last results (s; live mode; "
                                    "lossless waits for the tracks' end of stream)")
-                        ->check(CLI::NonNegativeNumber)
+                        ->check(uavmot::non_negative_finite())
                         ->capture_default_str();
     app.add_option("--idle-timeout", o.idle_timeout_s, "stop if nothing arrives for this long once started (s, 0 = never)")
-        ->check(CLI::NonNegativeNumber);
+        ->check(uavmot::non_negative_finite());
     dds::add_node_options(app, o.node);
     return [&]() -> int {
       dds::finalize(o.node, "view");

@@ -51,7 +51,7 @@ int annotate_main(int argc, char** argv) {
   view::OverlayOptions overlay;
   return run_app(argc, argv, "view-annotate-frame", "save one annotated frame of a sequence as PNG", [&](CLI::App& app) {
     app.add_option("input", input.path, "video, image folder or MOTChallenge sequence")->required();
-    app.add_option("--frame", frame_index, "frame to draw (1-based)")->check(CLI::PositiveNumber)->capture_default_str();
+    app.add_option("--frame", frame_index, "frame to draw (1-based)")->check(uavmot::positive_finite())->capture_default_str();
     app.add_option("--out", out_file, "PNG file")->required();
     app.add_option("--crop", crop_text, "x,y,w,h in frame pixels (default: the busiest --size window)");
     app.add_option("--size", size_text, "WxH of the automatic crop")->capture_default_str();

@@ -30,7 +30,7 @@ int classic_main(int argc, char** argv) {
     app.add_option("input", input.path, "video file, image folder or MOTChallenge sequence folder")->required();
     app.add_option("--out", out_dir, "output folder (tracks.txt)")->required();
     app.add_option("--threads", threads, "OpenCV threads (cv::setNumThreads)")->check(CLI::Range(1, 64))->capture_default_str();
-    app.add_option("--count", input.max_frames, "number of frames (0 = all)")->check(CLI::NonNegativeNumber);
+    app.add_option("--count", input.max_frames, "number of frames (0 = all)")->check(uavmot::non_negative_finite());
     app.add_option("--threshold", detection.threshold, "grey-level difference threshold")->capture_default_str();
     app.add_option("--both", detection.both_differences, "1: AND of the differences with frames k-1 and k+1; 0: OR")
         ->capture_default_str();

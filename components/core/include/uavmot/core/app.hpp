@@ -26,9 +26,11 @@ using AppSetup = std::function<AppBody(CLI::App&)>;
 
 int run_app(int argc, char** argv, const std::string& name, const std::string& description, const AppSetup& setup);
 
-// A finite number >= 0 (seconds, a rate). CLI11's NonNegativeNumber lets "nan" and "inf" through,
-// since every comparison with NaN is false: a NaN timeout then silently meant "wait forever".
+// Finite numbers >= 0 and > 0 (seconds, rates, sizes, counts), for every numeric option instead of
+// CLI11's NonNegativeNumber / PositiveNumber: those let "nan" and "inf" through (every comparison
+// with NaN is false), and a NaN timeout silently meant "wait forever".
 CLI::Validator non_negative_finite();
+CLI::Validator positive_finite();
 
 // OPENCV_FOR_THREADS_NUM=N (1..256) as cv::setNumThreads(N); run_app calls it first. OpenCV 4.6's
 // TBB backend ignores the variable on its own: its workers stay, spin after every parallel_for_
