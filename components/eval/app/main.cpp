@@ -39,6 +39,10 @@ int eval_main(int argc, char** argv) {
                    "Table I: a box belongs to an object when it covers at least this share of the object area")->check(CLI::Range(0.01, 1.0));
     app.add_option("--min-box-on-object", options.min_box_on_object,
                    "Table I: ... or when at least this share of the box lies on the object")->check(CLI::Range(0.01, 1.0));
+    app.add_option("--feature-tolerance", options.feature_tolerance_px,
+                   "features within this distance (px) of a moving object's pixels but not on them are ambiguous, not scored")
+        ->check(uavmot::non_negative_finite())
+        ->capture_default_str();
     app.add_option("--first-frame", options.first_frame, "first frame to score")->check(uavmot::non_negative_finite());
     app.add_option("--last-frame", options.last_frame, "last frame to score")->check(uavmot::non_negative_finite());
     return [&]() -> int {

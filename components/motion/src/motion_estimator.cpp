@@ -14,6 +14,7 @@
 
 #include "background_flow.hpp"
 #include "change_mask.hpp"
+#include "dragged_feature.hpp"
 #include "grid_corner_detector.hpp"
 #include "homography_estimation.hpp"
 #include "homography_refinement.hpp"
@@ -252,9 +253,11 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   out.quality.residual_px = rms_transfer_error(h, src, dst, robust.inliers);
 
   std::vector<LiveFeature> survivors;
+  std::vector<cv::Point2f> survivors_from;  // where each survivor was in the previous frame
   survivors.reserve(index.size());
   for (size_t k = 0; k < index.size(); ++k) {
     if (is_tracking_slip(h, src[k], dst[k], features_[index[k]].velocity, o.max_step_error_px)) continue;
+    survivors_from.push_back(src[k]);
     LiveFeature f = std::move(features_[index[k]]);
     f.position = dst[k];
     ++f.age;
@@ -296,6 +299,19 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   for (size_t k = 0; k < survivors.size(); ++k) {
     LiveFeature& f = survivors[k];
     f.classifier.update(decided[k], static_cast<int>(f.age), o, floor_px);
+  }
+  if (o.dragged_ratio > 0.0) {
+    const CentreCheck check{o.dragged_patch_radius_px, o.dragged_ratio, o.dragged_min_difference};
+    std::vector<LiveFeature> kept;
+    kept.reserve(survivors.size());
+    for (size_t k = 0; k < survivors.size(); ++k) {
+      if (survivors[k].classifier.moving() &&
+          centre_follows_background(previous_.levels[0], current.levels[0], survivors_from[k], survivors[k].position, h, check)) {
+        continue;  // dragged by the vehicle beside it: its own centre is ground
+      }
+      kept.push_back(std::move(survivors[k]));
+    }
+    survivors = std::move(kept);
   }
   features_ = std::move(survivors);
   return true;

@@ -38,6 +38,12 @@ struct MotionOptions {
   bool predict_with_previous_homography = true;  // initial flow from the last camera motion
   bool recover_large_motion = true;  // if that fails, retry from a phase-correlation translation
   double max_step_error_px = 3.0;    // a step this far from camera motion + own velocity is a slip (0 = off)
+  // A corner beside a vehicle whose LK window is mostly vehicle moves with it while its centre is
+  // ground: once classified moving it is dropped when its centre patch matches the ground's
+  // previous place (the homography) better than dragged_ratio x its own track's (0 = off).
+  double dragged_ratio = 0.5;
+  int dragged_patch_radius_px = 2;     // the centre patch is (2 r + 1)^2 pixels
+  double dragged_min_difference = 2.0; // RMS grey levels of the own track's mismatch below which nothing is decided
 
   // --- Frame-to-frame homography ----------------------------------------------------------
   std::string robust_method = "ransac";  // "ransac" or "magsac" (cv::findHomography)
@@ -127,6 +133,9 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("predict_with_previous_homography", o.predict_with_previous_homography, Flag{});
   visit("recover_large_motion", o.recover_large_motion, Flag{});
   visit("max_step_error_px", o.max_step_error_px, Range<double>{0.0, 1000.0});
+  visit("dragged_ratio", o.dragged_ratio, Range<double>{0.0, 1.0});
+  visit("dragged_patch_radius_px", o.dragged_patch_radius_px, Range<int>{1, 8});
+  visit("dragged_min_difference", o.dragged_min_difference, Range<double>{0.0, 255.0});
   visit("robust_method", o.robust_method, Choices{{"ransac", "magsac"}});
   visit("ransac_threshold_px", o.ransac_threshold_px, Range<double>{0.1, 50.0});
   visit("ransac_max_iterations", o.ransac_max_iterations, Range<int>{10, 100000});
