@@ -4,6 +4,7 @@
 #include <cstdlib>
 #include <cstring>
 #include <iostream>
+#include <sstream>
 
 #include <opencv2/core/utility.hpp>
 
@@ -31,6 +32,20 @@ CLI::Validator finite_number_validator(bool allow_zero) {
 
 CLI::Validator non_negative_finite() { return finite_number_validator(true); }
 CLI::Validator positive_finite() { return finite_number_validator(false); }
+
+CLI::Validator finite_range(double low, double high) {
+  std::ostringstream text_of_bounds;
+  text_of_bounds << "[" << low << " - " << high << "]";
+  const std::string bounds = text_of_bounds.str();
+  return CLI::Validator(
+      [low, high, bounds](std::string& text) -> std::string {
+        double value = 0.0;
+        if (!CLI::detail::lexical_cast(text, value)) return "not a number: " + text;
+        if (!std::isfinite(value) || value < low || value > high) return "not a finite number in " + bounds + ": " + text;
+        return {};
+      },
+      "FLOAT in " + bounds, "FiniteRange");
+}
 
 void apply_opencv_threads_from_environment() {
   const char* value = std::getenv("OPENCV_FOR_THREADS_NUM");

@@ -29,7 +29,7 @@ TEST(App, OpenCvThreadsFromTheEnvironmentAreApplied) {
   ::unsetenv("OPENCV_FOR_THREADS_NUM");
 }
 
-// Runs an app with one double option checked by `validator`; returns the exit code, or 100 + 1 when
+// Runs an app with one double option checked by `validator`; returns the exit code, or 101 when
 // the body ran with the value parsed.
 int exit_code_for(const CLI::Validator& validator, const std::string& value) {
   std::string name = "uavmot-test", flag = "--seconds", text = value;
@@ -50,6 +50,12 @@ TEST(App, NumericOptionsRefuseNanAndInfinityWithTheBadInputCode) {
   EXPECT_EQ(exit_code_for(non_negative_finite(), "0"), 101);
   EXPECT_EQ(exit_code_for(non_negative_finite(), "2.5"), 101);
   EXPECT_EQ(exit_code_for(positive_finite(), "1e-3"), 101);
+  for (const std::string bad : {"nan", "inf", "-0.1", "1.5", "x"}) {
+    EXPECT_EQ(exit_code_for(finite_range(0.0, 1.0), bad), kExitBadInput) << bad;
+  }
+  EXPECT_EQ(exit_code_for(finite_range(0.0, 1.0), "0"), 101);
+  EXPECT_EQ(exit_code_for(finite_range(0.0, 1.0), "1"), 101);
+  EXPECT_EQ(exit_code_for(finite_range(0.0, 1.0), "0.5"), 101);
 }
 
 TEST(App, HelpExitsZeroAndAnUnknownOptionExitsWithTheBadInputCode) {

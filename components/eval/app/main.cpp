@@ -34,11 +34,11 @@ int eval_main(int argc, char** argv) {
       files_option->excludes(from_recording);
     }
     app.add_option("--json", json_file, "also write the results as JSON to this file");
-    app.add_option("--min-visibility", options.min_visibility, "moving objects less visible than this are not scored")->check(CLI::Range(0.0, 1.0));
+    app.add_option("--min-visibility", options.min_visibility, "moving objects less visible than this are not scored")->check(uavmot::finite_range(0.0, 1.0));
     app.add_option("--min-object-coverage", options.min_object_coverage,
-                   "Table I: a box belongs to an object when it covers at least this share of the object area")->check(CLI::Range(0.01, 1.0));
+                   "Table I: a box belongs to an object when it covers at least this share of the object area")->check(uavmot::finite_range(0.01, 1.0));
     app.add_option("--min-box-on-object", options.min_box_on_object,
-                   "Table I: ... or when at least this share of the box lies on the object")->check(CLI::Range(0.01, 1.0));
+                   "Table I: ... or when at least this share of the box lies on the object")->check(uavmot::finite_range(0.01, 1.0));
     app.add_option("--feature-tolerance", options.feature_tolerance_px,
                    "features within this distance (px) of a moving object's pixels but not on them are ambiguous, not scored")
         ->check(uavmot::non_negative_finite())

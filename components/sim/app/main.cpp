@@ -42,7 +42,7 @@ int sim_main(int argc, char** argv) {
     app.add_flag("--print-scenario", print_scenario, "print the resolved scenario as YAML and exit");
     app.add_option("--preview", preview_file, "instead of a sequence, write one frame with its ground truth drawn (PNG)");
     app.add_option("--preview-frame", preview_frame, "frame for --preview (1-based)")->check(uavmot::positive_finite());
-    app.add_option("--preview-scale", preview_scale, "enlargement for --preview")->check(CLI::Range(0.1, 8.0));
+    app.add_option("--preview-scale", preview_scale, "enlargement for --preview")->check(uavmot::finite_range(0.1, 8.0));
     app.add_option("--preview-crop", preview_crop, "part of the frame for --preview: X Y WIDTH HEIGHT")->expected(4);
     return [&]() -> int {
       if (list) {

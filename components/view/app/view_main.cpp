@@ -28,7 +28,7 @@ int view_main(int argc, char** argv) {
     app.add_option("--fps", o.overlay.fps, "frame rate: time label, km/h and the mp4's rate")
         ->check(uavmot::positive_finite())->capture_default_str();
     app.add_option("--stream-id", o.stream, "draw only this stream (default: the first one seen)");
-    app.add_option("--scale", o.overlay.scale, "output size / frame size")->check(CLI::Range(0.05, 8.0))->capture_default_str();
+    app.add_option("--scale", o.overlay.scale, "output size / frame size")->check(uavmot::finite_range(0.05, 8.0))->capture_default_str();
     app.add_option("--vector-scale", o.overlay.vector_scale, "feature velocity arrows span this many frames")
         ->check(uavmot::positive_finite())->capture_default_str();
     app.add_flag("--stationary", o.overlay.stationary_features, "also draw stationary features (small red dots)");

@@ -55,7 +55,7 @@ int annotate_main(int argc, char** argv) {
     app.add_option("--out", out_file, "PNG file")->required();
     app.add_option("--crop", crop_text, "x,y,w,h in frame pixels (default: the busiest --size window)");
     app.add_option("--size", size_text, "WxH of the automatic crop")->capture_default_str();
-    app.add_option("--scale", overlay.scale, "enlargement")->check(CLI::Range(0.1, 8.0))->capture_default_str();
+    app.add_option("--scale", overlay.scale, "enlargement")->check(uavmot::finite_range(0.1, 8.0))->capture_default_str();
     app.add_flag("--stationary", overlay.stationary_features, "also draw stationary features");
     return [&]() -> int {
       init_logging("annotate", "info");

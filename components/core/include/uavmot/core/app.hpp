@@ -31,6 +31,8 @@ int run_app(int argc, char** argv, const std::string& name, const std::string& d
 // with NaN is false), and a NaN timeout silently meant "wait forever".
 CLI::Validator non_negative_finite();
 CLI::Validator positive_finite();
+// A finite number in [low, high], for floating-point options instead of CLI11's Range (same hole).
+CLI::Validator finite_range(double low, double high);
 
 // OPENCV_FOR_THREADS_NUM=N (1..256) as cv::setNumThreads(N); run_app calls it first. OpenCV 4.6's
 // TBB backend ignores the variable on its own: its workers stay, spin after every parallel_for_
