@@ -92,7 +92,7 @@ struct MotionOptions {
   // structure supporters within parallax_edge_radius_px and is no faster than
   // parallax_edge_speed_factor x the parallax cap there does not start moving (0 radius: off).
   double parallax_edge_radius_px = 24.0;
-  int parallax_edge_min_supporters = 2;
+  int parallax_edge_min_supporters = 3;
   double parallax_edge_speed_factor = 1.5;
 };
 
