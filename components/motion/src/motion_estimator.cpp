@@ -22,6 +22,7 @@
 #include "parallax_filter.hpp"
 #include "relative_velocity.hpp"
 #include "state_codec.hpp"
+#include "structure_edges.hpp"
 #include "uavmot/core/checksum.hpp"
 
 namespace uavmot::motion {
@@ -296,8 +297,11 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
     if (f.history.size() >= o.min_track_frames) speeds.push_back(std::hypot(decided[k].velocity[0], decided[k].velocity[1]));
   }
   const double floor_px = scene_noise_floor(std::move(speeds), o);
+  const StructureEdges edges(parallax_.supporters(), o);
   for (size_t k = 0; k < survivors.size(); ++k) {
     LiveFeature& f = survivors[k];
+    // A corner on a roof's or crown's silhouette slides off its epipolar line: it does not start moving.
+    if (f.velocity.available) decided[k].velocity = edges.decided_velocity(parallax_sample(f, h), decided[k].velocity, f.classifier.moving());
     f.classifier.update(decided[k], static_cast<int>(f.age), o, floor_px);
   }
   if (o.dragged_ratio > 0.0) {

@@ -96,6 +96,9 @@ void validate(const MotionOptions& o) {
   require(o.parallax_max_height_ratio >= 0.0 && o.parallax_max_height_ratio < 1.0,
           "parallax_max_height_ratio (tallest structure / flight height) must be in [0, 1)");
   require(o.parallax_ransac_iterations >= 1, "parallax_ransac_iterations must be >= 1");
+  require(o.parallax_edge_radius_px >= 0.0 && o.parallax_edge_speed_factor >= 0.0,
+          "parallax_edge_radius_px and parallax_edge_speed_factor must be >= 0");
+  require(o.parallax_edge_min_supporters >= 1, "parallax_edge_min_supporters must be >= 1");
 }
 
 }  // namespace uavmot::motion

@@ -120,6 +120,7 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
   const MotionOptions& o = options_;
   const ParallaxModel previous = model_;
   model_ = ParallaxModel{};
+  supporters_.clear();
   if (!o.parallax_rejection) return model_;
   const Normaliser norm(image_size);
 
@@ -203,6 +204,7 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
     const ParallaxSample& s = samples[significant[k]];
     along.push_back(std::abs(s.velocity.dot(epipolar_direction(best_e, cv::Point2f(static_cast<float>(points[k].x), static_cast<float>(points[k].y))))));
     where.emplace_back(s.position.x, s.position.y);
+    supporters_.push_back(s.position);
     mean += where.back();
   }
   mean *= 1.0 / static_cast<double>(where.size());
@@ -242,6 +244,7 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
                  model_.support >= o.parallax_min_share * static_cast<double>(samples.size()) &&
                  model_.support >= o.parallax_min_support_fraction * static_cast<double>(significant.size()) &&
                  model_.spread_px >= o.parallax_min_spread * min_side && model_.stable_frames >= o.parallax_stable_frames;
+  if (!model_.valid) supporters_.clear();
   return model_;
 }
 

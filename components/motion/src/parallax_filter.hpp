@@ -62,13 +62,19 @@ class ParallaxFilter {
   cv::Vec2d independent_velocity(const ParallaxSample& sample) const;
 
   const ParallaxModel& model() const { return model_; }
-  void reset() { model_ = ParallaxModel{}; }
+  // Where the last fit found structure: the positions of its supporters (empty unless valid).
+  const std::vector<cv::Point2f>& supporters() const { return supporters_; }
+  void reset() {
+    model_ = ParallaxModel{};
+    supporters_.clear();
+  }
   // The model is all a fit carries to the next frame's (a saved estimator state).
   void restore(const ParallaxModel& model) { model_ = model; }
 
  private:
   const MotionOptions& options_;
   ParallaxModel model_;
+  std::vector<cv::Point2f> supporters_;
 };
 
 // The largest parallax a static point at `sample` can have: structure up to a height h under a

@@ -47,6 +47,9 @@ TEST(MotionOptions, RejectsBadValuesNamingTheKey) {
   expect_error("robust_method: lmeds\n", "robust_method");
   expect_error("min_track_frames: 20\nhistory_frames: 10\n", "min_track_frames");
   expect_error("ransac_threshold_px: nan\n", "ransac_threshold_px");
+  expect_error("parallax_edge_radius_px: -1\n", "parallax_edge_radius_px");
+  expect_error("parallax_edge_min_supporters: 0\n", "parallax_edge_min_supporters");
+  expect_error("parallax_edge_speed_factor: -0.5\n", "parallax_edge_speed_factor");
 }
 
 // The options' keys, in the order of for_each_motion_option.

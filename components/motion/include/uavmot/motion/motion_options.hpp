@@ -93,6 +93,13 @@ struct MotionOptions {
   double parallax_max_height_ratio = 0.1;  // tallest structure / flight height above ground: caps the parallax explained
   double parallax_cap_factor = 0.0;    // ... and, when > 0, this times the supporters' median parallax (tighter: misses tall roofs)
   int parallax_ransac_iterations = 300;
+  // Corners on the silhouette of structure (a roof edge over ground texture slide off their
+  // epipolar line): a feature that is not moving yet, has at least parallax_edge_min_supporters
+  // structure supporters within parallax_edge_radius_px and is no faster than
+  // parallax_edge_speed_factor x the parallax cap there does not start moving (0 radius: off).
+  double parallax_edge_radius_px = 24.0;
+  int parallax_edge_min_supporters = 3;
+  double parallax_edge_speed_factor = 1.5;
 };
 
 // The limits of one option in the configuration file.
@@ -177,6 +184,9 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("parallax_max_height_ratio", o.parallax_max_height_ratio, Range<double>{0.0, 0.9});
   visit("parallax_cap_factor", o.parallax_cap_factor, Range<double>{0.0, 1000.0});
   visit("parallax_ransac_iterations", o.parallax_ransac_iterations, Range<int>{1, 100000});
+  visit("parallax_edge_radius_px", o.parallax_edge_radius_px, Range<double>{0.0, 1000.0});
+  visit("parallax_edge_min_supporters", o.parallax_edge_min_supporters, Range<int>{1, 100000});
+  visit("parallax_edge_speed_factor", o.parallax_edge_speed_factor, Range<double>{0.0, 100.0});
 }
 
 // Reads a `motion:` section; absent keys keep their defaults. Throws uavmot::InputError naming
