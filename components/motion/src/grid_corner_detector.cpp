@@ -51,55 +51,6 @@ class CellBuckets {
   std::vector<std::vector<cv::Point2f>> buckets_;
 };
 
-// The pixels whose minimum eigenvalues decide a cell's corners: the cell with room for the Sobel
-// and box filters and the local-maximum test around it, clipped to the image.
-cv::Rect eigen_roi(const cv::Mat& gray, const cv::Rect& cell, const MotionOptions& o) {
-  const int pad = o.corner_block_size / 2 + 2;
-  return cv::Rect(cell.x - pad, cell.y - pad, cell.width + 2 * pad, cell.height + 2 * pad) &
-         cv::Rect(0, 0, gray.cols, gray.rows);
-}
-
-// Minimum-eigenvalue map of `roi` (a ROI of the full image: the filters read the real neighbours
-// outside it).
-cv::Mat min_eigen_map(const cv::Mat& gray, const cv::Rect& roi, const MotionOptions& o) {
-  cv::Mat eig;
-  cv::cornerMinEigenVal(gray(roi), eig, o.corner_block_size, 3);
-  return eig;
-}
-
-// Local maxima inside `cell` (image coordinates), strongest first, read from `eig`, the map of
-// `eig_roi`, which contains eigen_roi(cell). The edge test is the cell's own ROI's, as if the map
-// had been computed for the cell alone.
-std::vector<Candidate> cell_maxima(const cv::Mat& eig, const cv::Rect& eig_roi, const cv::Rect& cell,
-                                   const cv::Rect& cell_roi, const MotionOptions& o) {
-  const auto threshold = static_cast<float>(o.min_corner_response);
-  std::vector<Candidate> out;
-  for (int y = cell.y; y < cell.y + cell.height; ++y) {
-    if (y - cell_roi.y < 1 || y - cell_roi.y >= cell_roi.height - 1) continue;
-    const int ry = y - eig_roi.y;
-    const float* above = eig.ptr<float>(ry - 1);
-    const float* row = eig.ptr<float>(ry);
-    const float* below = eig.ptr<float>(ry + 1);
-    for (int x = cell.x; x < cell.x + cell.width; ++x) {
-      if (x - cell_roi.x < 1 || x - cell_roi.x >= cell_roi.width - 1) continue;
-      const int rx = x - eig_roi.x;
-      const float v = row[rx];
-      if (v < threshold || v <= 0.0f) continue;
-      if (v < row[rx - 1] || v < row[rx + 1] || v < above[rx - 1] || v < above[rx] || v < above[rx + 1] ||
-          v < below[rx - 1] || v < below[rx] || v < below[rx + 1]) {
-        continue;
-      }
-      out.push_back({v, x, y});
-    }
-  }
-  std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) {
-    if (a.response != b.response) return a.response > b.response;
-    if (a.y != b.y) return a.y < b.y;
-    return a.x < b.x;
-  });
-  return out;
-}
-
 // Integer 3x3 Sobel products of one row: xx = dx^2, xy = dx dy, yy = dy^2 at x = 0..width-1 of `mid`
 // (which, with `up` and `down`, must be readable at -1 and width). Restrict-qualified parameters
 // let the compiler vectorise (the grey bytes could otherwise alias the output).
@@ -197,10 +148,42 @@ bool may_hold_corner(const cv::Mat& gray, const cv::Rect& cell, const MotionOpti
 }
 
 // Local maxima of the minimum-eigenvalue map inside `cell` (image coordinates), strongest first.
+// Cells that cannot hold a corner (may_hold_corner) are passed over without computing the map.
 std::vector<Candidate> cell_candidates(const cv::Mat& gray, const cv::Rect& cell, const MotionOptions& o) {
   if (!may_hold_corner(gray, cell, o)) return {};
-  const cv::Rect roi = eigen_roi(gray, cell, o);
-  return cell_maxima(min_eigen_map(gray, roi, o), roi, cell, roi, o);
+  const int pad = o.corner_block_size / 2 + 2;
+  const cv::Rect roi = cv::Rect(cell.x - pad, cell.y - pad, cell.width + 2 * pad, cell.height + 2 * pad) &
+                       cv::Rect(0, 0, gray.cols, gray.rows);
+  // A ROI of the full image: the filters read the real neighbours outside it, so responses equal
+  // a whole-image computation.
+  cv::Mat eig;
+  cv::cornerMinEigenVal(gray(roi), eig, o.corner_block_size, 3);
+  const auto threshold = static_cast<float>(o.min_corner_response);
+  std::vector<Candidate> out;
+  for (int y = cell.y; y < cell.y + cell.height; ++y) {
+    const int ry = y - roi.y;
+    if (ry < 1 || ry >= eig.rows - 1) continue;
+    const float* above = eig.ptr<float>(ry - 1);
+    const float* row = eig.ptr<float>(ry);
+    const float* below = eig.ptr<float>(ry + 1);
+    for (int x = cell.x; x < cell.x + cell.width; ++x) {
+      const int rx = x - roi.x;
+      if (rx < 1 || rx >= eig.cols - 1) continue;
+      const float v = row[rx];
+      if (v < threshold || v <= 0.0f) continue;
+      if (v < row[rx - 1] || v < row[rx + 1] || v < above[rx - 1] || v < above[rx] || v < above[rx + 1] ||
+          v < below[rx - 1] || v < below[rx] || v < below[rx + 1]) {
+        continue;
+      }
+      out.push_back({v, x, y});
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const Candidate& a, const Candidate& b) {
+    if (a.response != b.response) return a.response > b.response;
+    if (a.y != b.y) return a.y < b.y;
+    return a.x < b.x;
+  });
+  return out;
 }
 
 }  // namespace
@@ -233,70 +216,6 @@ struct DetectionGrid {
   CellBuckets buckets;
 };
 
-// The minimum-eigenvalue maps of one detection pass, computed once per run of neighbouring cells to
-// search in a grid row (on first use) instead of once per cell: cv::cornerMinEigenVal's set-up cost
-// per call was as large as its work on a cell. Same bytes as per cell: a run's ROI spans exactly the
-// rows of each of its cells' own ROIs (the box filter sums each column running down from the ROI's
-// first row, so that row decides the rounding), and along a row each output reads only its
-// neighbours, wherever the ROI starts.
-class RunEigenMaps {
- public:
-  RunEigenMaps(const cv::Mat& gray, const DetectionGrid& grid, const std::vector<std::pair<int, int>>& to_search,
-               const MotionOptions& o)
-      : gray_(gray), grid_(grid), options_(o), run_of_(static_cast<size_t>(grid.cols * grid.rows), kNotPlanned) {
-    std::vector<int> cells;
-    for (const auto& [around, index] : to_search) {
-      const cv::Rect area = grid.area(index);
-      if (area.width <= 0 || area.height <= 0) continue;
-      if (may_hold_corner(gray, area, o)) {
-        cells.push_back(index);
-      } else {
-        run_of_[static_cast<size_t>(index)] = kFlat;
-      }
-    }
-    std::sort(cells.begin(), cells.end());  // row-major: runs along each grid row
-    for (const int index : cells) {
-      const cv::Rect roi = eigen_roi(gray, grid.area(index), o);
-      // A gap of one cell costs about what another call would; wider gaps start a new run.
-      const bool extends = !runs_.empty() && runs_.back().row == index / grid.cols &&
-                           index - runs_.back().last <= 1 + kMaxGapCells;
-      if (extends) {
-        runs_.back().roi |= roi;
-        runs_.back().last = index;
-      } else {
-        runs_.push_back({index / grid.cols, index, roi, {}});
-      }
-      run_of_[static_cast<size_t>(index)] = static_cast<int>(runs_.size()) - 1;
-    }
-  }
-
-  // Cell `index`'s local maxima, strongest first (as cell_candidates gives them).
-  std::vector<Candidate> candidates(int index) {
-    const cv::Rect area = grid_.area(index);
-    const int r = run_of_[static_cast<size_t>(index)];
-    if (r == kFlat) return {};
-    if (r == kNotPlanned) return cell_candidates(gray_, area, options_);
-    Run& run = runs_[static_cast<size_t>(r)];
-    if (run.eig.empty()) run.eig = min_eigen_map(gray_, run.roi, options_);
-    return cell_maxima(run.eig, run.roi, area, eigen_roi(gray_, area, options_), options_);
-  }
-
- private:
-  static constexpr int kMaxGapCells = 1;
-  static constexpr int kNotPlanned = -1, kFlat = -2;  // run_of_ values besides a run's index
-  struct Run {
-    int row;       // grid row
-    int last;      // last cell index in the run
-    cv::Rect roi;  // union of its cells' eigen_roi: the same rows, consecutive columns
-    cv::Mat eig;   // computed on first use
-  };
-  const cv::Mat& gray_;
-  const DetectionGrid& grid_;
-  const MotionOptions& options_;
-  std::vector<Run> runs_;
-  std::vector<int> run_of_;  // per cell: its run, kFlat (no corner possible) or kNotPlanned
-};
-
 // Shared by both entry points; `retry_at` (may be null) holds the empty-cell back-off.
 std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
                                          const MotionOptions& o, std::vector<int64_t>* retry_at, int64_t call) {
@@ -321,12 +240,11 @@ std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const std::vector<
     to_search.emplace_back(around, index);
   }
   if (static_cast<int>(to_search.size()) > budget) std::stable_sort(to_search.begin(), to_search.end());
-  RunEigenMaps eigen_maps(gray, grid, to_search, o);
   for (const auto& [around, index] : to_search) {
     if (budget <= 0) break;
     const cv::Rect area = grid.area(index);
     if (area.width <= 0 || area.height <= 0) continue;
-    const auto candidates = eigen_maps.candidates(index);
+    const auto candidates = cell_candidates(gray, area, o);
     bool placed = false;
     for (const auto& c : candidates) {
       const cv::Point2f p(static_cast<float>(c.x), static_cast<float>(c.y));
