@@ -9,18 +9,15 @@
 #include <opencv2/core/types.hpp>
 
 #include "uavmot/core/homography.hpp"
+#include "uavmot/motion/motion_options.hpp"
 
 namespace uavmot::motion {
 
-struct CentreCheck {
-  int radius_px = 2;            // the centre patch is (2 r + 1)^2 pixels
-  double ratio = 0.8;           // dragged when the ground's mismatch is below this x the feature's own
-  double min_difference = 2.0;  // ... and the feature's own mismatch is above this (RMS grey levels)
-};
-
 // True when the centre of a feature tracked from `from` (previous frame) to `to` (current frame)
-// follows the background under `h` (previous -> current) clearly better than its own track.
+// follows the background clearly better than its own track. `current_to_previous` is the inverse
+// of the frame's homography (computed once per frame by the caller); the thresholds are the
+// options' dragged_ratio, dragged_patch_radius_px and dragged_min_difference.
 bool centre_follows_background(const cv::Mat& previous, const cv::Mat& current, cv::Point2f from, cv::Point2f to,
-                               const Homography& h, const CentreCheck& check);
+                               const Homography& current_to_previous, const MotionOptions& options);
 
 }  // namespace uavmot::motion

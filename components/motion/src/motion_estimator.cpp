@@ -305,12 +305,13 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
     f.classifier.update(decided[k], static_cast<int>(f.age), o, floor_px);
   }
   if (o.dragged_ratio > 0.0) {
-    const CentreCheck check{o.dragged_patch_radius_px, o.dragged_ratio, o.dragged_min_difference};
+    const Homography current_to_previous = h.inv();
     std::vector<LiveFeature> kept;
     kept.reserve(survivors.size());
     for (size_t k = 0; k < survivors.size(); ++k) {
       if (survivors[k].classifier.moving() &&
-          centre_follows_background(previous_.levels[0], current.levels[0], survivors_from[k], survivors[k].position, h, check)) {
+          centre_follows_background(previous_.levels[0], current.levels[0], survivors_from[k], survivors[k].position,
+                                    current_to_previous, o)) {
         continue;  // dragged by the vehicle beside it: its own centre is ground
       }
       kept.push_back(std::move(survivors[k]));

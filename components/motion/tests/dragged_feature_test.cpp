@@ -36,34 +36,35 @@ cv::Mat frame(int k) {
   return image;
 }
 
-Homography camera_step() { return Homography(1, 0, kCamera.x, 0, 1, kCamera.y, 0, 0, 1); }
+// The inverse of the frame's homography: current -> previous.
+Homography camera_step_back() { return Homography(1, 0, -kCamera.x, 0, 1, -kCamera.y, 0, 0, 1); }
 
 TEST(DraggedFeature, AGroundCornerDraggedByTheVehicleBesideItIsRecognised) {
   const cv::Mat previous = frame(0), current = frame(1);
-  const CentreCheck check;
+  const MotionOptions check;
   // 3 px below the vehicle's lower edge: ground, but an 11 px LK window there is half vehicle.
   const cv::Point2f from(92.0f, 62.0f);
   const cv::Point2f dragged = from + kCamera + kVehicle;
-  EXPECT_TRUE(centre_follows_background(previous, current, from, dragged, camera_step(), check));
+  EXPECT_TRUE(centre_follows_background(previous, current, from, dragged, camera_step_back(), check));
 }
 
 TEST(DraggedFeature, TheVehiclesOwnCornersAndTheGroundsAreKept) {
   const cv::Mat previous = frame(0), current = frame(1);
-  const CentreCheck check;
+  const MotionOptions check;
   for (const cv::Point2f on_vehicle : {cv::Point2f(82.0f, 52.0f), cv::Point2f(100.0f, 57.0f), cv::Point2f(90.0f, 55.0f)}) {
-    EXPECT_FALSE(centre_follows_background(previous, current, on_vehicle, on_vehicle + kCamera + kVehicle, camera_step(), check))
+    EXPECT_FALSE(centre_follows_background(previous, current, on_vehicle, on_vehicle + kCamera + kVehicle, camera_step_back(), check))
         << on_vehicle;
   }
   // A ground corner tracked with the ground: its own track is the ground's, nothing to decide.
   const cv::Point2f ground(40.0f, 30.0f);
-  EXPECT_FALSE(centre_follows_background(previous, current, ground, ground + kCamera, camera_step(), check));
+  EXPECT_FALSE(centre_follows_background(previous, current, ground, ground + kCamera, camera_step_back(), check));
 }
 
 TEST(DraggedFeature, ARatioOfZeroTurnsTheCheckOff) {
   const cv::Point2f from(92.0f, 62.0f);
-  CentreCheck off;
-  off.ratio = 0.0;
-  EXPECT_FALSE(centre_follows_background(frame(0), frame(1), from, from + kCamera + kVehicle, camera_step(), off));
+  MotionOptions off;
+  off.dragged_ratio = 0.0;
+  EXPECT_FALSE(centre_follows_background(frame(0), frame(1), from, from + kCamera + kVehicle, camera_step_back(), off));
 }
 
 }  // namespace
