@@ -16,7 +16,13 @@ HealthReporter::HealthReporter(Participant& participant, std::string component, 
       component_(std::move(component)),
       stream_id_(std::move(stream_id)),
       period_(period),
-      last_report_(std::chrono::steady_clock::now()) {}
+      last_report_(std::chrono::steady_clock::now()) {
+  // At once, not a period later: the launcher's watchdog watches a process only once it has
+  // reported, and a component stopped in its first second (the source was, by fault injection,
+  // before its first tick) would otherwise never be seen hanging. Transient-local: a watchdog that
+  // matches later still gets it.
+  report(msg::ComponentState::STARTING);
+}
 
 void HealthReporter::frame_out(int64_t frame_index, double processing_ms, double latency_ms) {
   ++frames_out_;
