@@ -3,6 +3,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <iostream>
 #include <sstream>
 
@@ -15,36 +16,35 @@ namespace uavmot {
 
 namespace {
 
-CLI::Validator finite_number_validator(bool allow_zero) {
-  const std::string bound = allow_zero ? ">= 0" : "> 0";
+// A validator that refuses what is not a finite number inside `bound` ("> 0", "in [a - b]").
+// CLI11's own PositiveNumber, NonNegativeNumber and Range let nan and inf through (every
+// comparison with NaN is false).
+CLI::Validator finite_number(std::function<bool(double)> inside, const std::string& bound, const std::string& type,
+                             const std::string& name) {
   return CLI::Validator(
-      [allow_zero, bound](std::string& text) -> std::string {
+      [inside = std::move(inside), bound](std::string& text) -> std::string {
         double value = 0.0;
         if (!CLI::detail::lexical_cast(text, value)) return "not a number: " + text;
-        const bool in_range = allow_zero ? value >= 0.0 : value > 0.0;
-        if (!std::isfinite(value) || !in_range) return "not a finite number " + bound + ": " + text;
+        if (!std::isfinite(value) || !inside(value)) return "not a finite number " + bound + ": " + text;
         return {};
       },
-      allow_zero ? "NONNEGATIVE" : "POSITIVE", allow_zero ? "NonNegativeFinite" : "PositiveFinite");
+      type, name);
 }
 
 }  // namespace
 
-CLI::Validator non_negative_finite() { return finite_number_validator(true); }
-CLI::Validator positive_finite() { return finite_number_validator(false); }
+CLI::Validator non_negative_finite() {
+  return finite_number([](double v) { return v >= 0.0; }, ">= 0", "NONNEGATIVE", "NonNegativeFinite");
+}
+CLI::Validator positive_finite() {
+  return finite_number([](double v) { return v > 0.0; }, "> 0", "POSITIVE", "PositiveFinite");
+}
 
 CLI::Validator finite_range(double low, double high) {
-  std::ostringstream text_of_bounds;
-  text_of_bounds << "[" << low << " - " << high << "]";
-  const std::string bounds = text_of_bounds.str();
-  return CLI::Validator(
-      [low, high, bounds](std::string& text) -> std::string {
-        double value = 0.0;
-        if (!CLI::detail::lexical_cast(text, value)) return "not a number: " + text;
-        if (!std::isfinite(value) || value < low || value > high) return "not a finite number in " + bounds + ": " + text;
-        return {};
-      },
-      "FLOAT in " + bounds, "FiniteRange");
+  std::ostringstream bounds;
+  bounds << "[" << low << " - " << high << "]";
+  return finite_number([low, high](double v) { return v >= low && v <= high; }, "in " + bounds.str(),
+                       "FLOAT in " + bounds.str(), "FiniteRange");
 }
 
 void apply_opencv_threads_from_environment() {

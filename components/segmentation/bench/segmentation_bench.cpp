@@ -1,6 +1,6 @@
 // Speed of the segmentation layer: 1080p frames with N moving car-like objects, one core.
 //
-//   build/bin/uavmot-segmentation-bench [--objects 50] [--frames 40] [--threads 1]
+//   uavmot segmentation-bench [--objects 50] [--frames 40] [--threads 1]
 //
 // Prints per method the median / 95th percentile of the time Segmenter::process (whole-frame
 // path: clustering, crops, gradients, fusion, blobs) takes per frame: wall time, and the
@@ -14,11 +14,14 @@
 #include <cstring>
 #include <string>
 #include <ctime>
+#include <memory>
 #include <vector>
 
+#include <CLI/CLI.hpp>
 #include <opencv2/core.hpp>
 
 #include "../tests/synthetic.hpp"
+#include "uavmot/core/app.hpp"
 #include "uavmot/segmentation/segmenter.hpp"
 
 namespace seg = uavmot::segmentation;
@@ -90,23 +93,7 @@ double percentile(std::vector<double> v, double q) {
 
 }  // namespace
 
-int main(int argc, char** argv) {
-  int objects = 50, frames = 40, threads = 1;
-  for (int i = 1; i + 1 < argc; i += 2) {
-    const std::string key = argv[i];
-    const int value = std::atoi(argv[i + 1]);
-    if (key == "--objects") objects = value;
-    else if (key == "--frames") frames = value;
-    else if (key == "--threads") threads = value;
-    else {
-      std::fprintf(stderr, "unknown option %s\nusage: %s [--objects N] [--frames N] [--threads N]\n", argv[i], argv[0]);
-      return 2;
-    }
-  }
-  if (argc % 2 == 0 || objects < 1 || frames < 1 || threads < 1) {
-    std::fprintf(stderr, "usage: %s [--objects N>=1] [--frames N>=1] [--threads N>=1]\n", argv[0]);
-    return 2;
-  }
+int run_bench(int objects, int frames, int threads) {
   cv::setNumThreads(threads);
   const uavmot::SceneInfo scene;  // GSD 0.35 m: cars about 13 x 5 px, as in the paper
   std::vector<Workload> workloads;
@@ -152,4 +139,20 @@ int main(int argc, char** argv) {
                 static_cast<double>(regions) / frames, 100.0 * static_cast<double>(hits) / static_cast<double>(truths));
   }
   return 0;
+}
+
+int main(int argc, char** argv) {
+  return uavmot::run_app(argc, argv, "segmentation-bench",
+                         "benchmark: segmentation time per frame and method on synthetic 1080p frames",
+                         [](CLI::App& app) -> uavmot::AppBody {
+                           auto objects = std::make_shared<int>(50), frames = std::make_shared<int>(40),
+                                threads = std::make_shared<int>(1);
+                           app.add_option("--objects", *objects, "moving car-like objects per frame")
+                               ->capture_default_str()->check(CLI::Range(1, 10000));
+                           app.add_option("--frames", *frames, "frames timed per method")
+                               ->capture_default_str()->check(CLI::Range(1, 100000));
+                           app.add_option("--threads", *threads, "OpenCV threads (1: CPU time is the work)")
+                               ->capture_default_str()->check(CLI::Range(1, 256));
+                           return [=] { return run_bench(*objects, *frames, *threads); };
+                         });
 }
