@@ -8,7 +8,8 @@
 #   lossless: `uavmot launch` (mode=lossless) wall time -> frames per second.
 #   bash tools/bench/foxglove_bench.sh [OUT] [RUNS] [VIEWER ARGS...]   (OUT default out/foxglove_bench, RUNS 2;
 #   VIEWER ARGS e.g. `--prefix uavmot/foxglove/`: viewers take only the Foxglove channels;
-#   DDS domain $UAVMOT_BENCH_DOMAIN, default 64; needs build/bin and tests/foxglove_js's packages)
+#   DDS domain $UAVMOT_BENCH_DOMAIN, default 64; needs build/bin and tests/foxglove_js's packages;
+#   UAVMOT_BENCH_BRIDGE: another uavmot-foxglove binary to measure, e.g. a copy of main's for A/B runs)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 root=$(pwd)
@@ -18,6 +19,7 @@ viewer_args=("${@:3}")
 domain=${UAVMOT_BENCH_DOMAIN:-64}
 bin=$root/build/bin
 js=$root/tests/foxglove_js
+bridge_bin=${UAVMOT_BENCH_BRIDGE:-$bin/uavmot-foxglove}
 source "$root/tests/support/node_packages.sh"
 require_tools foxglove_bench node npm
 install_node_packages "$js"
@@ -34,7 +36,7 @@ cpu_seconds() {
 seq=$out/paper
 [ -f "$seq/seqinfo.ini" ] || "$bin/uavmot" sim --preset paper --seed 1 --frames 250 --out "$seq" --quiet
 gsd=$(sed -n 's/^gsd=//p' "$seq/seqinfo.ini")
-echo "date: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load average: $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "date: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load average: $(cut -d' ' -f1-3 /proc/loadavg), bridge $bridge_bin"
 printf '%-8s %3s | %-11s %-9s %-8s %-12s | %-20s | %-12s | %s\n' config run "live lists" "median" "p99" "drops s/m/s/t" \
   "cpu s chain/br/view" "lossless fps" "bridge"
 for run in $(seq "$runs"); do
@@ -43,7 +45,7 @@ for run in $(seq "$runs"); do
     rm -f "$out/done-$tag" "$out"/ready-$tag-*
     pids=()
     if [[ $config != none ]]; then
-      "$bin/uavmot-foxglove" --port 0 --domain "$domain" --transport local --gsd "$gsd" --fps 25 >"$out/bridge-$tag.log" 2>&1 &
+      "$bridge_bin" --port 0 --domain "$domain" --transport local --gsd "$gsd" --fps 25 >"$out/bridge-$tag.log" 2>&1 &
       bridge=$!
       for _ in $(seq 100); do grep -q serving "$out/bridge-$tag.log" && break; sleep 0.1; done
       port=$(sed -n 's/.*ws:\/\/127\.0\.0\.1:\([0-9]*\).*/\1/p' "$out/bridge-$tag.log" | head -1)
