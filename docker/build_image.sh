@@ -19,5 +19,12 @@ mkdir "$context/bin"
 cp $(sh "$here/image_programs.sh" "$build_dir/bin") "$context/bin/"
 strip --strip-unneeded "$context"/bin/* 2>/dev/null || true
 cp -a "$here/../bringup" "$context/bringup"
+previous=$($engine image inspect --format '{{.Id}}' "$name" 2>/dev/null || true)
 $engine build -q -t "$name" --build-arg "BASE=${UAVMOT_BASE_IMAGE:-localhost/uavmot-base}" -f "$here/Dockerfile" "$context" >/dev/null
+# The image it replaces is left without a name (760 MB each build); remove it unless a container
+# still uses it.
+current=$($engine image inspect --format '{{.Id}}' "$name")
+if [ -n "$previous" ] && [ "$previous" != "$current" ]; then
+  $engine rmi "$previous" >/dev/null 2>&1 || true
+fi
 echo "build_image: built $name ($($engine image inspect --format '{{.Size}}' "$name") bytes)"
