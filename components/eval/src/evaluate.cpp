@@ -7,6 +7,15 @@
 
 namespace uavmot::eval {
 
+std::vector<SizeBand> default_size_bands() {
+  std::vector<SizeBand> bands(3);
+  bands[0].max_length_px = 10.0;
+  bands[1].min_length_px = 10.0;
+  bands[1].max_length_px = 20.0;
+  bands[2].min_length_px = 20.0;
+  return bands;
+}
+
 EvaluationResult evaluate(const Sequence& sequence, const Predictions& predictions, const EvalOptions& options) {
   const auto in_unit = [](double v) { return std::isfinite(v) && v >= 0.0 && v <= 1.0; };
   if (!in_unit(options.min_object_coverage) || !in_unit(options.min_box_on_object) || !in_unit(options.min_visibility))

@@ -4,6 +4,15 @@
 
 namespace uavmot::eval {
 
+namespace {
+// "<10", "10-20", ">=20".
+std::string band_name(const SizeBand& b) {
+  if (b.min_length_px <= 0.0) return fmt::format("<{:g}", b.max_length_px);
+  if (b.max_length_px <= 0.0) return fmt::format(">={:g}", b.min_length_px);
+  return fmt::format("{:g}-{:g}", b.min_length_px, b.max_length_px);
+}
+}  // namespace
+
 std::string format_table(const EvaluationResult& r) {
   std::string out;
   const auto pct = [](double v) { return fmt::format("{:6.1f} %", 100.0 * v); };
@@ -14,7 +23,14 @@ std::string format_table(const EvaluationResult& r) {
   out += fmt::format("  correct          {:>8}  {}\n", c.correct, pct(c.rate(c.correct)));
   out += fmt::format("  under-segmented  {:>8}  {}\n", c.under_segmented, pct(c.rate(c.under_segmented)));
   out += fmt::format("  over-segmented   {:>8}  {}\n", c.over_segmented, pct(c.rate(c.over_segmented)));
-  out += fmt::format("  missed           {:>8}  {}\n\n", c.missed, pct(c.rate(c.missed)));
+  out += fmt::format("  missed           {:>8}  {}\n", c.missed, pct(c.rate(c.missed)));
+  out += "  by length in the image:\n";
+  for (const SizeBand& b : c.by_length) {
+    if (b.instances == 0) continue;
+    out += fmt::format("    {:>6} px {:>8} instances, correct {}, missed {}\n", band_name(b), b.instances,
+                       pct(b.correct_rate()), pct(static_cast<double>(b.missed) / static_cast<double>(b.instances)));
+  }
+  out += "\n";
   const Precision& p = r.precision;
   out += fmt::format("Precision (paper Table II), mean absolute error over {} correct instances ({} boxes)\n", p.samples,
                      p.oriented ? "oriented" : "axis-aligned");
@@ -66,6 +82,13 @@ nlohmann::ordered_json to_json(const EvaluationResult& r) {
                        {"over_segmented", c.over_segmented}, {"missed", c.missed}, {"correct_rate", c.rate(c.correct)},
                        {"under_segmented_rate", c.rate(c.under_segmented)}, {"over_segmented_rate", c.rate(c.over_segmented)},
                        {"missed_rate", c.rate(c.missed)}};
+  nlohmann::ordered_json bands = nlohmann::ordered_json::array();
+  for (const SizeBand& b : c.by_length) {
+    bands.push_back({{"band", band_name(b)}, {"min_length_px", b.min_length_px},
+                     {"max_length_px", b.max_length_px > 0.0 ? nlohmann::ordered_json(b.max_length_px) : nlohmann::ordered_json()},
+                     {"instances", b.instances}, {"correct", b.correct}, {"missed", b.missed}, {"correct_rate", b.correct_rate()}});
+  }
+  j["completeness"]["by_length_px"] = bands;
   const Precision& p = r.precision;
   j["precision"] = {{"samples", p.samples}, {"oriented", p.oriented}, {"error_x_px", p.error_x_px}, {"error_y_px", p.error_y_px},
                     {"error_width_px", p.error_width_px}, {"error_length_px", p.error_length_px}, {"error_x_m", p.error_x_m},

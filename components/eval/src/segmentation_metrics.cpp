@@ -28,6 +28,18 @@ bool associated(const OrientedBox& object, const OrientedBox& box, const EvalOpt
   return inter >= options.min_object_coverage * box_area(object) || inter >= options.min_box_on_object * box_area(box);
 }
 
+// The object's length in the image: its oriented box's longer side, else its MOTChallenge box's.
+double apparent_length_px(const GroundTruthObject& o) {
+  return o.oriented ? std::max(o.box.width, o.box.length) : std::max(o.bounds.width, o.bounds.height);
+}
+
+SizeBand& size_band(std::vector<SizeBand>& bands, double length_px) {
+  for (SizeBand& b : bands) {
+    if (length_px >= b.min_length_px && (b.max_length_px <= 0.0 || length_px < b.max_length_px)) return b;
+  }
+  return bands.back();  // bands cover [0, inf); only a NaN length gets here
+}
+
 const std::vector<StructureOutline>& structures_in(const Sequence& sequence, int64_t frame) {
   static const std::vector<StructureOutline> none;
   auto it = sequence.structures.find(frame);
@@ -108,14 +120,18 @@ void segmentation_metrics(const Sequence& sequence, const Predictions& predictio
         only = p;
         if (moving_per_box[p] >= 2) merged = true;
       }
+      SizeBand& band = size_band(completeness.by_length, apparent_length_px(o));
+      ++band.instances;
       if (segments == 0) {
         ++completeness.missed;
+        ++band.missed;
       } else if (merged) {
         ++completeness.under_segmented;
       } else if (segments >= 2) {
         ++completeness.over_segmented;
       } else {
         ++completeness.correct;
+        ++band.correct;
         const PredictedBox& b = boxes[only];
         const bool oriented = o.oriented && b.oriented.has_value();
         all_oriented = all_oriented && oriented;

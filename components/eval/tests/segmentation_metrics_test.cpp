@@ -39,6 +39,34 @@ TEST(Completeness, CountsCorrectMergedSplitAndMissedAsThePaper) {
   EXPECT_DOUBLE_EQ(r.completeness.correct_rate(), 0.2);
 }
 
+// The same instances by apparent length: a 6 px car missed, a 14 px car found, a 30 px truck found
+// (bands < 10, 10-20, >= 20 px), and the bands add up to the totals.
+TEST(Completeness, CountsEachBandOfApparentLength) {
+  Sequence s = testing::empty_sequence(1, 0.5);
+  s.objects[1] = {object(1, 10, 10, 3, 6), object(2, 40, 10, 5, 14), object(3, 80, 10, 5, 30)};
+  Predictions p;
+  p.boxes[1] = {oriented(-1, 40, 10, 5, 14), oriented(-1, 80, 10, 5, 30)};
+  const EvaluationResult r = evaluate(s, p);
+  ASSERT_EQ(r.completeness.by_length.size(), 3u);
+  const auto& small = r.completeness.by_length[0];
+  const auto& medium = r.completeness.by_length[1];
+  const auto& large = r.completeness.by_length[2];
+  EXPECT_EQ(small.instances, 1);
+  EXPECT_EQ(small.missed, 1);
+  EXPECT_EQ(small.correct, 0);
+  EXPECT_EQ(medium.instances, 1);
+  EXPECT_EQ(medium.correct, 1);
+  EXPECT_EQ(large.instances, 1);
+  EXPECT_EQ(large.correct, 1);
+  EXPECT_DOUBLE_EQ(large.correct_rate(), 1.0);
+  // The hand frame: five 10 px cars, all in the middle band, which repeats the totals.
+  const EvaluationResult h = evaluate(hand_sequence(), hand_predictions());
+  EXPECT_EQ(h.completeness.by_length[0].instances, 0);
+  EXPECT_EQ(h.completeness.by_length[1].instances, h.completeness.instances);
+  EXPECT_EQ(h.completeness.by_length[1].correct, h.completeness.correct);
+  EXPECT_EQ(h.completeness.by_length[1].missed, h.completeness.missed);
+}
+
 TEST(Precision, MeanAbsoluteErrorsOverCorrectInstancesInPixelsAndMetres) {
   const EvaluationResult r = evaluate(hand_sequence(), hand_predictions());
   EXPECT_EQ(r.precision.samples, 1);

@@ -43,6 +43,18 @@ struct EvalOptions {
   int64_t last_frame = 0;
 };
 
+// The instances of one band of apparent size: where a chain loses small or far-away vehicles.
+struct SizeBand {
+  double min_length_px = 0.0, max_length_px = 0.0;  // [min, max) of the object's length in the image; max 0: no limit
+  int64_t instances = 0, correct = 0, missed = 0;
+  double correct_rate() const { return instances > 0 ? static_cast<double>(correct) / static_cast<double>(instances) : 0.0; }
+};
+
+// Bands by the length in px (the oriented box's longer side; of the MOTChallenge box without one):
+// under 10 px (the `small` preset's 8 px cars, far field of an oblique view), 10-20 (`paper`'s 13-15),
+// 20 and over.
+std::vector<SizeBand> default_size_bands();
+
 // Paper Table I. Instances are (moving object, frame) pairs.
 struct Completeness {
   int64_t instances = 0;
@@ -50,6 +62,7 @@ struct Completeness {
   int64_t under_segmented = 0;  // merged with another moving object (each merged object counts)
   int64_t over_segmented = 0;   // split into two or more boxes (counts once)
   int64_t missed = 0;
+  std::vector<SizeBand> by_length = default_size_bands();  // the same instances by apparent size
   double rate(int64_t n) const { return instances > 0 ? static_cast<double>(n) / static_cast<double>(instances) : 0.0; }
   double correct_rate() const { return rate(correct); }
 };
