@@ -55,7 +55,15 @@ for preset in "${presets[@]}"; do for seed in $seeds; do echo "$preset $seed"; d
 python3 - "$work/$label" "$seeds" "${vary:+-vary}" "${presets[@]}" <<'PY'
 import json, os, sys
 root, seeds, suffix, presets = sys.argv[1], sys.argv[2].split(), sys.argv[3], sys.argv[4:]
+def band_correct(e, band):
+    # Correct % of one apparent-size band (docs/eval.md); None where the seed has none of that size.
+    for b in e["completeness"].get("by_length_px", []):
+        if b["band"] == band and b["instances"] > 0:
+            return 100 * b["correct_rate"]
+    return None
 cols = [("correct %", lambda e: 100 * e["completeness"]["correct_rate"], min),
+        ("correct % < 10 px", lambda e: band_correct(e, "<10"), min),
+        ("correct % >= 20 px", lambda e: band_correct(e, ">=20"), min),
         ("under %", lambda e: 100 * e["completeness"]["under_segmented_rate"], max),
         ("over %", lambda e: 100 * e["completeness"]["over_segmented_rate"], max),
         ("e_x px", lambda e: e["precision"]["error_x_px"], max),
@@ -78,7 +86,7 @@ for p in presets:
         print(f"| {p} | 0 |" + " |" * len(cols)); continue
     cells = []
     for name, get, worst in cols:
-        vals = [get(e) for e in runs]
-        cells.append(f"{sum(vals) / len(vals):.2f} ({worst(vals):.2f})")
+        vals = [v for v in (get(e) for e in runs) if v is not None]
+        cells.append(f"{sum(vals) / len(vals):.2f} ({worst(vals):.2f})" if vals else "-")
     print(f"| {p} | {len(runs)} | " + " | ".join(cells) + " |")
 PY
