@@ -28,7 +28,7 @@ std::string format_table(const EvaluationResult& r) {
   for (const SizeBand& b : c.by_length) {
     if (b.instances == 0) continue;
     out += fmt::format("    {:>6} px {:>8} instances, correct {}, missed {}\n", band_name(b), b.instances,
-                       pct(b.correct_rate()), pct(static_cast<double>(b.missed) / static_cast<double>(b.instances)));
+                       pct(b.correct_rate()), pct(b.rate(b.missed)));
   }
   out += "\n";
   const Precision& p = r.precision;

@@ -1,11 +1,11 @@
 #include "grid_corner_detector.hpp"
 
-#include "corner_bound.hpp"
-
 #include <algorithm>
 #include <cmath>
 
 #include <opencv2/imgproc.hpp>
+
+#include "corner_bound.hpp"
 
 namespace uavmot::motion {
 namespace {

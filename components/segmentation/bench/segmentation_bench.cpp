@@ -10,11 +10,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <cstdlib>
-#include <cstring>
-#include <string>
 #include <ctime>
-#include <memory>
+#include <string>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -142,17 +139,15 @@ int run_bench(int objects, int frames, int threads) {
 }
 
 int main(int argc, char** argv) {
+  int objects = 50, frames = 40, threads = 1;
   return uavmot::run_app(argc, argv, "segmentation-bench",
-                         "benchmark: segmentation time per frame and method on synthetic 1080p frames",
-                         [](CLI::App& app) -> uavmot::AppBody {
-                           auto objects = std::make_shared<int>(50), frames = std::make_shared<int>(40),
-                                threads = std::make_shared<int>(1);
-                           app.add_option("--objects", *objects, "moving car-like objects per frame")
+                         "benchmark: segmentation time per frame and method on synthetic 1080p frames", [&](CLI::App& app) {
+                           app.add_option("--objects", objects, "moving car-like objects per frame")
                                ->capture_default_str()->check(CLI::Range(1, 10000));
-                           app.add_option("--frames", *frames, "frames timed per method")
+                           app.add_option("--frames", frames, "frames timed per method")
                                ->capture_default_str()->check(CLI::Range(1, 100000));
-                           app.add_option("--threads", *threads, "OpenCV threads (1: CPU time is the work)")
+                           app.add_option("--threads", threads, "OpenCV threads (1: CPU time is the work)")
                                ->capture_default_str()->check(CLI::Range(1, 256));
-                           return [=] { return run_bench(*objects, *frames, *threads); };
+                           return [&] { return run_bench(objects, frames, threads); };
                          });
 }

@@ -47,7 +47,8 @@ struct EvalOptions {
 struct SizeBand {
   double min_length_px = 0.0, max_length_px = 0.0;  // [min, max) of the object's length in the image; max 0: no limit
   int64_t instances = 0, correct = 0, missed = 0;
-  double correct_rate() const { return instances > 0 ? static_cast<double>(correct) / static_cast<double>(instances) : 0.0; }
+  double rate(int64_t n) const { return instances > 0 ? static_cast<double>(n) / static_cast<double>(instances) : 0.0; }
+  double correct_rate() const { return rate(correct); }
 };
 
 // Bands by the length in px (the oriented box's longer side; of the MOTChallenge box without one):
