@@ -75,15 +75,20 @@ TEST(ChainPaperScenario, ThreeSeedsHoldTheirCorrectRatePrecisionAndFalseAlarms) 
   }
   // Seeds 1-3 on 2026-11-25 (tools/validate.sh --tuning --frames 250 paper): correct 95.27 / 89.95 / 92.41 %, over 0 / 69 / 0 instances,
   // under 0, false alarms 3.05 / 2.44 / 1.93 per frame, MOTA@0.3 0.912 / 0.848 / 0.911.
-  EXPECT_GE(correct, 0.92);
-  EXPECT_GE(worst_correct, 0.89);
+  // 2026-11-27, with the segmentation's shift check (docs/segmentation.md): correct 95.22 / 88.55 / 92.17 % (without it
+  // 95.09 / 89.22 / 92.19), false alarms 1.26 / 2.48 / 1.54 per frame (without 1.86 / 2.32 / 1.73). The check was judged
+  // on held-out seeds 100-104 of every preset (docs/tracking.md: paper 89.97 -> 90.02 %, false alarms 3.43 -> 2.74),
+  // not on these three; the correct-rate bounds moved down by what seed 2 lost, the false-alarm bound down to what the
+  // check holds (without it, 1.97 per frame fails it).
+  EXPECT_GE(correct, 0.915);
+  EXPECT_GE(worst_correct, 0.88);
   EXPECT_EQ(under, 0);
   EXPECT_LE(over, 0.005);
   EXPECT_LE(ex, 1.5);
   EXPECT_LE(ey, 1.5);
   EXPECT_LE(ew, 2.1);
   EXPECT_LE(el, 2.9);
-  EXPECT_LE(fa, 2.8);
+  EXPECT_LE(fa, 1.9);
   EXPECT_GE(mota, 0.88);
 }
 

@@ -335,6 +335,17 @@ void MotionEstimator::Impl::detect_new_features(const cv::Mat& gray, bool contin
   }
   const std::vector<cv::Point2f> grid = detector_.detect(gray, existing, continuous);
   found.insert(found.end(), grid.begin(), grid.end());
+  existing.insert(existing.end(), grid.begin(), grid.end());
+  // Too few corners above the response to hold the homography on the ground (on `fastcam`, 30-110
+  // per frame over a blurred field, the rest on the traffic, and the homography 1-20 px off): the
+  // weaker corners serve too, in that frame only (docs/motion.md).
+  if (options_.sparse_response_factor < 1.0 &&
+      static_cast<double>(existing.size()) < options_.sparse_features_fraction * options_.max_features) {
+    MotionOptions weaker = options_;
+    weaker.min_corner_response *= options_.sparse_response_factor;
+    const std::vector<cv::Point2f> weak = detect_missing_corners(gray, existing, weaker);
+    found.insert(found.end(), weak.begin(), weak.end());
+  }
   for (const auto& p : found) {
     LiveFeature f;
     f.id = next_id_++;

@@ -52,6 +52,8 @@ void validate(const MotionOptions& o) {
   require(o.min_corner_response >= 0.0, "min_corner_response must be >= 0");
   require(o.border_px >= 0, "border_px must be >= 0");
   require(o.empty_cell_retry_frames >= 1, "empty_cell_retry_frames must be >= 1");
+  require(o.sparse_features_fraction >= 0.0 && o.sparse_features_fraction <= 1.0, "sparse_features_fraction must be in [0, 1]");
+  require(o.sparse_response_factor >= 0.0 && o.sparse_response_factor <= 1.0, "sparse_response_factor must be in [0, 1]");
   require(o.lk_window_px >= 5 && o.lk_window_px % 2 == 1, "lk_window_px must be odd and >= 5");
   require(o.pyramid_levels >= 0 && o.pyramid_levels <= 6, "pyramid_levels must be in [0, 6]");
   require(o.backward_levels >= 0 && o.backward_levels <= o.pyramid_levels,

@@ -74,6 +74,9 @@ void validate(const SegmentationOptions& o) {
   require(r.min_supporting_features >= 0, "min_supporting_features", ">= 0");
   require(in_range(r.support_margin_px, 0.0, 100.0), "support_margin_px", "in [0, 100]");
   require(in_range(r.duplicate_overlap, 0.0, 1.0), "duplicate_overlap", "in [0, 1]");
+  require(in_range(r.shift_check_ratio, 0.0, 10.0), "shift_check_ratio", "in [0, 10]");
+  require(in_range(r.shift_check_min_speed_px, 0.0, 100.0), "shift_check_min_speed_px", "in [0, 100]");
+  require(in_range(r.shift_check_search_px, 0.0, 10.0), "shift_check_search_px", "in [0, 10]");
 }
 
 SegmentationOptions load_segmentation_options(const ConfigNode& node) {
@@ -83,7 +86,8 @@ SegmentationOptions load_segmentation_options(const ConfigNode& node) {
                     "window_margin_m", "min_edge_contrast", "fusion_rule", "threshold_quantile",
                     "threshold_min_fraction", "connectivity", "closing_size_px", "box_fit", "edge_band_px", "split_width_factor", "split_length_factor", "group_length_factor", "group_width_factor", "group_touch_px", "min_length_factor",
                     "max_length_factor", "min_width_factor", "max_width_factor", "min_supporting_features",
-                    "support_margin_px", "fallback_to_cluster_box", "duplicate_overlap"});
+                    "support_margin_px", "fallback_to_cluster_box", "duplicate_overlap", "shift_check_ratio",
+                    "shift_check_min_speed_px", "shift_check_search_px"});
   std::string method = to_string(o.method);
   node.read_choice("method", method, segmentation_method_names());
   o.method = parse_segmentation_method(method);
@@ -135,6 +139,9 @@ SegmentationOptions load_segmentation_options(const ConfigNode& node) {
   node.read("support_margin_px", r.support_margin_px, 0.0, 100.0);
   node.read("fallback_to_cluster_box", r.fallback_to_cluster_box);
   node.read("duplicate_overlap", r.duplicate_overlap, 0.0, 1.0);
+  node.read("shift_check_ratio", r.shift_check_ratio, 0.0, 10.0);
+  node.read("shift_check_min_speed_px", r.shift_check_min_speed_px, 0.0, 100.0);
+  node.read("shift_check_search_px", r.shift_check_search_px, 0.0, 10.0);
   validate(o);
   return o;
 }

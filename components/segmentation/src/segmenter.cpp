@@ -9,6 +9,7 @@
 #include "uavmot/core/error.hpp"
 #include "uavmot/segmentation/blob_regions.hpp"
 #include "method_gradients.hpp"
+#include "shift_check.hpp"
 
 namespace uavmot::segmentation {
 namespace {
@@ -219,6 +220,14 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
     if (f.moving && std::isfinite(f.position.x) && std::isfinite(f.position.y)) positions.emplace(f.id, f.position);
   }
 
+  // The shift check compares with the previous frame: only the frame right after it, and only
+  // through a homography the motion layer trusted.
+  const auto& r = options_.regions;
+  const bool shift_check = r.shift_check_ratio > 0.0 && previous_frame_ >= 0 && previous_stream_ == motion.stream_id &&
+                           previous_frame_ + 1 == motion.frame_index && motion.quality.valid && is_finite(motion.homography);
+  const Homography previous_from_current = shift_check ? motion.homography.inv() : Homography::eye();
+  std::vector<ImageCrop> windows;
+
   std::vector<Region> candidates;
   for (const auto& c : result.clusters) {
     std::vector<cv::Point2d> feature_positions;
@@ -246,6 +255,19 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
       if (pixels.channels() == 3) cv::cvtColor(pixels, gray, cv::COLOR_BGR2GRAY); else gray = pixels;
       ++stats_.windows;
       regions = segment_window(gray, window, c, feature_positions);
+      if (r.shift_check_ratio > 0.0) {
+        ImageCrop current{window, gray.data == pixels.data ? gray.clone() : gray};  // kept past this frame
+        if (shift_check && std::hypot(c.velocity[0], c.velocity[1]) >= r.shift_check_min_speed_px) {
+          std::erase_if(regions, [&](const Region& region) {
+            const auto e = compare_shifts(current, region.box, {c.velocity, r.shift_check_search_px, r.shift_check_min_speed_px},
+                                          previous_from_current, previous_windows_);
+            const bool is_static = e && e->moving_error >= r.shift_check_ratio * e->static_error;
+            stats_.static_regions += is_static ? 1 : 0;
+            return is_static;
+          });
+        }
+        windows.push_back(std::move(current));
+      }
     } else {
       ++stats_.windows_without_pixels;
     }
@@ -267,6 +289,9 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
     });
     if (duplicate) ++stats_.duplicate_regions; else result.regions.push_back(candidate);
   }
+  previous_stream_ = motion.stream_id;
+  previous_frame_ = motion.frame_index;
+  previous_windows_ = std::move(windows);
   return result;
 }
 

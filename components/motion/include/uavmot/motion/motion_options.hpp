@@ -19,6 +19,11 @@ struct MotionOptions {
   double min_corner_response = 2e-3;  // absolute minimum eigenvalue (cv::cornerMinEigenVal units)
   int border_px = 6;                // features this close to the image border are not used
   int empty_cell_retry_frames = 4;  // a cell that gave no new corner waits this many frames (staggered)
+  // A frame left with fewer than sparse_features_fraction x max_features live features (blur from
+  // a fast camera over fields or water) cannot hold the homography on the ground: every cell that
+  // lacks features is searched again at sparse_response_factor x min_corner_response.
+  double sparse_features_fraction = 0.05;
+  double sparse_response_factor = 0.25;  // 1 = off
   // Features seeded on change: corners on pixels that differ from the previous frame warped by the
   // homography (something moves there) are added first, even in cells that hold enough features
   // and when max_features is reached: at most this many per frame, change_features_per_cell per
@@ -127,6 +132,8 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("min_corner_response", o.min_corner_response, Range<double>{0.0, 1.0});
   visit("border_px", o.border_px, Range<int>{0, 256});
   visit("empty_cell_retry_frames", o.empty_cell_retry_frames, Range<int>{1, 1000});
+  visit("sparse_features_fraction", o.sparse_features_fraction, Range<double>{0.0, 1.0});
+  visit("sparse_response_factor", o.sparse_response_factor, Range<double>{0.0, 1.0});
   visit("change_seed_features", o.change_seed_features, Range<int>{0, 100000});
   visit("change_features_per_cell", o.change_features_per_cell, Range<int>{1, 64});
   visit("change_threshold_sigma", o.change_threshold_sigma, Range<double>{0.0, 100.0});

@@ -110,6 +110,16 @@ struct RegionOptions {
   // half a vehicle width from every kept region, add the box around those features (a second
   // car whose blob was rejected).
   bool fallback_to_cluster_box = true;
+  // A gradient region of a cluster faster than `shift_check_min_speed_px` (px/frame) is dropped
+  // when the previous frame, carried through the homography, matches its pixels unshifted at
+  // least as well as shifted by the cluster's velocity, times `shift_check_ratio`: static texture
+  // in the cluster's window (a lane marking beside a car). 0 disables; it needs the previous
+  // frame, so the first frame of a run and frames after a gap are not checked.
+  double shift_check_ratio = 1.1;
+  double shift_check_min_speed_px = 0.3;
+  // The moving hypothesis also tries the velocity +- this much in x and y (the features' velocity is
+  // an estimate); shifts slower than shift_check_min_speed_px are never tried.
+  double shift_check_search_px = 0.5;
   // A region whose box is covered by an earlier region's box for more than this fraction of
   // its area is a duplicate (nested blob, or the same blob seen from two cluster windows).
   double duplicate_overlap = 0.5;

@@ -57,6 +57,7 @@ struct SegmentationStats {
   size_t invalid_crops = 0;           // crop with empty pixels, wrong type or size != roi
   size_t fallback_regions = 0;        // feature boxes added where the gradients found nothing
   size_t duplicate_regions = 0;       // regions dropped as duplicates of an earlier one
+  size_t static_regions = 0;          // regions dropped by the shift check (static texture)
 };
 
 class Segmenter {
@@ -95,6 +96,10 @@ class Segmenter {
   // Accumulator response to a step of regions.min_edge_contrast grey levels, per gradient method.
   std::array<double, kSegmentationMethods.size()> references_;
   SegmentationStats stats_;
+  // The grey cluster windows of the frame segmented last, for the shift check of the next.
+  std::string previous_stream_;
+  int64_t previous_frame_ = -1;
+  std::vector<ImageCrop> previous_windows_;
 };
 
 }  // namespace uavmot::segmentation

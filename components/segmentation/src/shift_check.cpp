@@ -1,0 +1,92 @@
+#include "shift_check.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace uavmot::segmentation {
+namespace {
+
+// Bilinear grey value at `p` (pixel centres at integer coordinates); `p` must lie in the window
+// with a pixel to spare to the right and below (holds()).
+double sample(const ImageCrop& w, const cv::Point2d& p) {
+  const double x = p.x - w.roi.x, y = p.y - w.roi.y;
+  const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
+  const double fx = x - x0, fy = y - y0;
+  const uint8_t* r0 = w.pixels.ptr<uint8_t>(y0);
+  const uint8_t* r1 = w.pixels.ptr<uint8_t>(y0 + 1);
+  return (1 - fy) * ((1 - fx) * r0[x0] + fx * r0[x0 + 1]) + fy * ((1 - fx) * r1[x0] + fx * r1[x0 + 1]);
+}
+
+bool holds(const ImageCrop& w, const cv::Point2d& p) {
+  return p.x >= w.roi.x && p.y >= w.roi.y && p.x < w.roi.x + w.roi.width - 1 && p.y < w.roi.y + w.roi.height - 1;
+}
+
+}  // namespace
+
+std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const OrientedBox& box, const ShiftSearch& search,
+                                          const Homography& previous_from_current, const std::vector<ImageCrop>& previous) {
+  std::vector<cv::Point2d> shifts;
+  for (const double dy : {0.0, -search.radius_px, search.radius_px}) {
+    for (const double dx : {0.0, -search.radius_px, search.radius_px}) {
+      const cv::Point2d s(search.velocity[0] + dx, search.velocity[1] + dy);
+      if (std::hypot(s.x, s.y) >= search.min_speed_px) shifts.push_back(s);
+      if (search.radius_px <= 0.0) break;
+    }
+    if (search.radius_px <= 0.0) break;
+  }
+  const cv::Rect2d extent = axis_aligned_bounds(box);
+  if (shifts.empty() || !(std::isfinite(extent.x) && std::isfinite(extent.y) && std::isfinite(extent.width) &&
+                          std::isfinite(extent.height))) {
+    return std::nullopt;
+  }
+  const cv::Rect bounds = cv::Rect(cv::Point(static_cast<int>(std::floor(extent.x)), static_cast<int>(std::floor(extent.y))),
+                                   cv::Point(static_cast<int>(std::ceil(extent.br().x)) + 1,
+                                             static_cast<int>(std::ceil(extent.br().y)) + 1)) &
+                          current.roi;
+  if (bounds.empty()) return std::nullopt;
+  // The previous window that holds most of the region at rest and moved (the window of the same
+  // cluster, usually; a region at the edge of a cluster's window, as static texture beside a car
+  // often is, may be held only in part, as the window moved with the car).
+  const cv::Point2d then = apply_homography(previous_from_current, cv::Point2d(bounds.x, bounds.y));
+  const cv::Point2d velocity(search.velocity[0], search.velocity[1]);
+  const cv::Rect2d rest_area(then, cv::Size2d(bounds.size())), moved_area(then - velocity, cv::Size2d(bounds.size()));
+  const ImageCrop* source = nullptr;
+  double most = 0.0;
+  for (const ImageCrop& w : previous) {
+    const cv::Rect2d roi(w.roi);
+    const double held = std::min((roi & rest_area).area(), (roi & moved_area).area());
+    if (held > most) {
+      most = held;
+      source = &w;
+    }
+  }
+  if (source == nullptr) return std::nullopt;
+  int inside = 0;
+  ShiftErrors e;
+  std::vector<double> moved_error(shifts.size(), 0.0);
+  for (int y = bounds.y; y < bounds.br().y; ++y) {
+    const uint8_t* row = current.pixels.ptr<uint8_t>(y - current.roi.y);
+    for (int x = bounds.x; x < bounds.br().x; ++x) {
+      const cv::Point2d p(x, y);
+      if (!box_contains(box, p)) continue;
+      ++inside;
+      const cv::Point2d at_rest = apply_homography(previous_from_current, p);
+      bool held = holds(*source, at_rest);
+      for (size_t i = 0; i < shifts.size() && held; ++i) held = holds(*source, apply_homography(previous_from_current, p - shifts[i]));
+      if (!held) continue;
+      const double value = row[x - current.roi.x];
+      e.static_error += std::abs(value - sample(*source, at_rest));
+      for (size_t i = 0; i < shifts.size(); ++i) {
+        moved_error[i] += std::abs(value - sample(*source, apply_homography(previous_from_current, p - shifts[i])));
+      }
+      ++e.pixels;
+    }
+  }
+  // Half the region at least, or the comparison says too little.
+  if (e.pixels == 0 || 2 * e.pixels < inside) return std::nullopt;
+  e.static_error /= e.pixels;
+  e.moving_error = *std::min_element(moved_error.begin(), moved_error.end()) / e.pixels;
+  return e;
+}
+
+}  // namespace uavmot::segmentation

@@ -1,0 +1,42 @@
+#pragma once
+// Does a region move with its cluster, or is it static texture that the cluster's window holds
+// (a lane marking beside a car, the kerb behind it)? Both pass the gradients and the feature
+// support test; only the previous frame tells them apart. Carried through the homography, the
+// previous frame explains a static region unshifted and a moving one shifted by the cluster's
+// velocity.
+
+#include <optional>
+#include <vector>
+
+#include <opencv2/core/mat.hpp>
+#include <opencv2/core/types.hpp>
+
+#include "uavmot/core/homography.hpp"
+#include "uavmot/core/oriented_box.hpp"
+#include "uavmot/segmentation/segmenter.hpp"
+
+namespace uavmot::segmentation {
+
+// Mean absolute grey difference over the region's pixels between the current frame and the
+// previous one sampled where each pixel was if static, and where it was if it moved with the
+// cluster (the best of the shifts searched).
+struct ShiftErrors {
+  double static_error = 0.0;
+  double moving_error = 0.0;
+  int pixels = 0;
+};
+
+struct ShiftSearch {
+  cv::Vec2d velocity;       // the cluster's motion relative to the background, px/frame
+  double radius_px = 0.0;   // also try velocity + (dx, dy) for dx, dy in {-r, 0, r}: feature velocities are estimates
+  double min_speed_px = 0;  // shifts slower than this are not a moving hypothesis (they would explain static texture)
+};
+
+// `current` (grey, CV_8UC1) holds the region: its window of the current frame; `previous` are grey
+// windows of the previous frame; `previous_from_current` maps current-frame to previous-frame
+// coordinates. Nothing when no shift is fast enough, no window of `previous` holds at least half
+// the region's pixels under every hypothesis, or the box holds no pixel of `current`.
+std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const OrientedBox& box, const ShiftSearch& search,
+                                          const Homography& previous_from_current, const std::vector<ImageCrop>& previous);
+
+}  // namespace uavmot::segmentation

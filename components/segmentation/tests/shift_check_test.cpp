@@ -1,0 +1,180 @@
+// The shift check: static texture in a cluster's window against a car moving with the cluster.
+
+#include "../src/shift_check.hpp"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+#include "synthetic.hpp"
+#include "uavmot/core/error.hpp"
+#include "uavmot/segmentation/segmenter.hpp"
+
+namespace uavmot::segmentation {
+namespace {
+
+using testing::features_on;
+using testing::textured_background;
+
+Homography translation(double dx, double dy) { return Homography(1, 0, dx, 0, 1, dy, 0, 0, 1); }
+
+// `image` shifted by (dx, dy): out(x) = image(x - d), bilinear.
+cv::Mat shifted(const cv::Mat& image, double dx, double dy) {
+  cv::Mat out;
+  cv::warpAffine(image, out, cv::Matx23d(1, 0, dx, 0, 1, dy), image.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
+  return out;
+}
+
+// Two frames of a camera moving by (3, 2) px over textured ground, with a textured 15 x 6 px car
+// driving by `velocity` relative to the ground; the car's box in the current frame.
+struct TwoFrames {
+  cv::Mat previous, current;
+  OrientedBox car;
+};
+
+TwoFrames two_frames(cv::Vec2d velocity) {
+  const cv::Mat ground = textured_background(cv::Size(200, 160), 100.0, 40.0, 0.0, 7);
+  const cv::Mat paint = textured_background(cv::Size(200, 160), 150.0, 60.0, 0.0, 8);
+  const cv::Rect car_then(90, 70, 15, 6);
+  TwoFrames f;
+  f.previous = ground.clone();
+  paint(car_then).copyTo(f.previous(car_then));
+  f.current = shifted(f.previous, 3.0 + velocity[0], 3.0 + velocity[1]);  // the car, moved with camera and velocity
+  cv::Mat ground_now = shifted(ground, 3.0, 3.0);
+  cv::Mat car_mask = cv::Mat::zeros(ground.size(), CV_8U);
+  car_mask(car_then).setTo(255);
+  ground_now.copyTo(f.current, shifted(car_mask, 3.0 + velocity[0], 3.0 + velocity[1]) < 128);
+  f.car = {car_then.x + 7.0 + 3.0 + velocity[0], car_then.y + 2.5 + 3.0 + velocity[1], 4.0, 13.0, 0.0};  // inside the car
+  return f;
+}
+
+TEST(ShiftCheck, AMovingCarMatchesShiftedAndTheGroundUnshifted) {
+  for (const cv::Vec2d& velocity : {cv::Vec2d(1.0, 0.0), cv::Vec2d(0.0, -2.0), cv::Vec2d(0.4, 0.0)}) {
+    SCOPED_TRACE(velocity);
+    const TwoFrames f = two_frames(velocity);
+    const ImageCrop current{cv::Rect(60, 50, 80, 60), f.current(cv::Rect(60, 50, 80, 60))};
+    const std::vector<ImageCrop> previous{{cv::Rect(50, 40, 90, 70), f.previous(cv::Rect(50, 40, 90, 70))}};
+    const Homography previous_from_current = translation(-3.0, -3.0);
+
+    const auto on_car = compare_shifts(current, f.car, {velocity, 0.0, 0.3}, previous_from_current, previous);
+    ASSERT_TRUE(on_car.has_value());
+    EXPECT_GT(on_car->pixels, 30);
+    EXPECT_LT(on_car->moving_error, 0.5 * on_car->static_error);
+
+    OrientedBox ground = f.car;  // the same box on the ground beside the car
+    ground.cy += 12.0;
+    const auto on_ground = compare_shifts(current, ground, {velocity, 0.5, 0.3}, previous_from_current, previous);
+    ASSERT_TRUE(on_ground.has_value());
+    EXPECT_LT(on_ground->static_error, 1.0);  // bilinear resampling only
+    EXPECT_GT(on_ground->moving_error, 2.0 * on_ground->static_error + 1.0);
+  }
+}
+
+TEST(ShiftCheck, TheSearchAbsorbsAnErrorInTheFeaturesVelocity) {
+  const cv::Vec2d velocity(1.0, 0.0), estimate(1.5, -0.5);  // the features' estimate, half a pixel off in x and y
+  const TwoFrames f = two_frames(velocity);
+  const ImageCrop current{cv::Rect(60, 50, 80, 60), f.current(cv::Rect(60, 50, 80, 60))};
+  const std::vector<ImageCrop> previous{{cv::Rect(50, 40, 90, 70), f.previous(cv::Rect(50, 40, 90, 70))}};
+  const auto exact = compare_shifts(current, f.car, {estimate, 0.0, 0.3}, translation(-3.0, -3.0), previous);
+  const auto searched = compare_shifts(current, f.car, {estimate, 0.5, 0.3}, translation(-3.0, -3.0), previous);
+  ASSERT_TRUE(exact && searched);
+  EXPECT_LT(searched->moving_error, 0.5 * exact->moving_error);
+  EXPECT_LT(searched->moving_error, 1.0);
+  EXPECT_EQ(searched->static_error, exact->static_error);
+}
+
+TEST(ShiftCheck, NothingWithoutAFastEnoughShift) {
+  const TwoFrames f = two_frames({0.0, 0.0});
+  const ImageCrop current{cv::Rect(60, 50, 80, 60), f.current(cv::Rect(60, 50, 80, 60))};
+  const std::vector<ImageCrop> previous{{cv::Rect(50, 40, 90, 70), f.previous(cv::Rect(50, 40, 90, 70))}};
+  EXPECT_FALSE(compare_shifts(current, f.car, {{0.1, 0.0}, 0.0, 0.3}, translation(-3.0, -3.0), previous));
+  // With the search, only the shifts of at least 0.3 px are tried: static texture still wins.
+  const auto searched = compare_shifts(current, f.car, {{0.1, 0.0}, 0.5, 0.3}, translation(-3.0, -3.0), previous);
+  ASSERT_TRUE(searched);
+  EXPECT_GT(searched->moving_error, searched->static_error);
+}
+
+TEST(ShiftCheck, NothingWithoutThePreviousPixels) {
+  const TwoFrames f = two_frames({1.0, 0.0});
+  const ImageCrop current{cv::Rect(60, 50, 80, 60), f.current(cv::Rect(60, 50, 80, 60))};
+  const Homography previous_from_current = translation(-3.0, -3.0);
+  // The previous frame's window ends left of where the car was.
+  EXPECT_FALSE(compare_shifts(current, f.car, {{1.0, 0.0}, 0.5, 0.3}, previous_from_current,
+                              {{cv::Rect(0, 0, 80, 160), f.previous(cv::Rect(0, 0, 80, 160))}}));
+  EXPECT_FALSE(compare_shifts(current, f.car, {{1.0, 0.0}, 0.5, 0.3}, previous_from_current, {}));
+  OrientedBox outside = f.car;  // a box outside the current window
+  outside.cx = 10.0;
+  EXPECT_FALSE(compare_shifts(current, outside, {{1.0, 0.0}, 0.5, 0.3}, previous_from_current,
+                              {{cv::Rect(0, 0, 200, 160), f.previous}}));
+}
+
+// A car drives past a bright static bar (a lane marking); a feature beside the car, dragged
+// along by it, joins the car's cluster and so its window holds the bar, which the gradients
+// segment as a region of its own. With the previous frame, the shift check drops the bar.
+struct MarkingScene {
+  Frame frame;
+  MotionEstimate motion;
+};
+
+MarkingScene marking_scene(int64_t index) {
+  MarkingScene s;
+  const int x = 80 + static_cast<int>(index);  // the car drives 1 px per frame to the right
+  s.frame.stream_id = s.motion.stream_id = "test";
+  s.frame.index = s.motion.frame_index = index;
+  s.frame.image = textured_background(cv::Size(200, 160), 100.0, 6.0, 0.0, 3);
+  s.frame.image(cv::Rect(95, 86, 18, 3)).setTo(cv::Scalar(200));  // the marking, static
+  s.frame.image(cv::Rect(x, 74, 15, 6)).setTo(cv::Scalar(170));  // the car
+  s.motion.quality.valid = true;
+  const OrientedBox car{x + 7.0, 76.5, 6.0, 15.0, 0.0};
+  s.motion.features = features_on(car, {1.0, 0.0}, 1);
+  TrackedFeature dragged = s.motion.features.back();
+  dragged.id = 100;
+  dragged.position = {x + 10.0, 84.0};  // between the car and the marking
+  s.motion.features.push_back(dragged);
+  return s;
+}
+
+bool region_near(const SegmentationResult& r, cv::Point2d p, double radius) {
+  for (const Region& region : r.regions) {
+    if (std::hypot(region.box.cx - p.x, region.box.cy - p.y) < radius) return true;
+  }
+  return false;
+}
+
+TEST(ShiftCheck, TheSegmenterDropsAStaticMarkingBesideAMovingCar) {
+  SceneInfo scene;
+  scene.gsd_m = 0.3;
+  scene.fps = 25.0;
+  const cv::Point2d marking(103.5, 87.0);
+  for (const double ratio : {0.0, 1.0}) {
+    SCOPED_TRACE(ratio);
+    SegmentationOptions options;
+    options.regions.shift_check_ratio = ratio;
+    Segmenter segmenter(options, scene);
+    const MarkingScene first = marking_scene(6), second = marking_scene(7);
+    const auto before = segmenter.process(first.frame, first.motion);  // no previous frame: not checked
+    EXPECT_TRUE(region_near(before, marking, 4.0));
+    const auto after = segmenter.process(second.frame, second.motion);
+    EXPECT_TRUE(region_near(after, {94.0, 76.5}, 3.0)) << "the car";
+    EXPECT_EQ(region_near(after, marking, 4.0), ratio == 0.0) << "the marking";
+    EXPECT_EQ(segmenter.last_stats().static_regions, ratio == 0.0 ? 0u : 1u);
+
+    // A gap in the frame indices: nothing to compare with, nothing dropped.
+    const MarkingScene later = marking_scene(9);
+    EXPECT_TRUE(region_near(segmenter.process(later.frame, later.motion), marking, 4.0));
+  }
+}
+
+TEST(ShiftCheck, OptionsAreValidated) {
+  SegmentationOptions options;
+  options.regions.shift_check_ratio = -1.0;
+  EXPECT_THROW(validate(options), InvalidArgument);
+  options.regions.shift_check_ratio = 1.0;
+  options.regions.shift_check_min_speed_px = std::nan("");
+  EXPECT_THROW(validate(options), InvalidArgument);
+}
+
+}  // namespace
+}  // namespace uavmot::segmentation
