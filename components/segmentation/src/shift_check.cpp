@@ -61,6 +61,11 @@ std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const Orient
     }
   }
   if (source == nullptr) return std::nullopt;
+  // Over a region's few pixels the homography is affine to well below a thousandth of a pixel:
+  // each shift moves the previous-frame position by the same amount, the Jacobian times the shift.
+  const cv::Matx22d jacobian = homography_jacobian(previous_from_current, cv::Point2d(box.cx, box.cy));
+  std::vector<cv::Point2d> offsets;
+  for (const cv::Point2d& s : shifts) offsets.push_back(-(jacobian * cv::Vec2d(s.x, s.y)));
   int inside = 0;
   ShiftErrors e;
   std::vector<double> moved_error(shifts.size(), 0.0);
@@ -72,13 +77,11 @@ std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const Orient
       ++inside;
       const cv::Point2d at_rest = apply_homography(previous_from_current, p);
       bool held = holds(*source, at_rest);
-      for (size_t i = 0; i < shifts.size() && held; ++i) held = holds(*source, apply_homography(previous_from_current, p - shifts[i]));
+      for (size_t i = 0; i < offsets.size() && held; ++i) held = holds(*source, at_rest + offsets[i]);
       if (!held) continue;
       const double value = row[x - current.roi.x];
       e.static_error += std::abs(value - sample(*source, at_rest));
-      for (size_t i = 0; i < shifts.size(); ++i) {
-        moved_error[i] += std::abs(value - sample(*source, apply_homography(previous_from_current, p - shifts[i])));
-      }
+      for (size_t i = 0; i < offsets.size(); ++i) moved_error[i] += std::abs(value - sample(*source, at_rest + offsets[i]));
       ++e.pixels;
     }
   }
