@@ -1,0 +1,124 @@
+#!/usr/bin/env python3
+"""Where the false alarms of a simulated run lie, relative to the moving vehicles (docs/tracking.md).
+
+A confirmed box of tracks_obb.csv (`uavmot process`) belongs to a ground-truth vehicle (gt/gt_obb.csv,
+moving or not) as `uavmot eval` decides it: the exact intersection of the oriented boxes covers at
+least half of the vehicle or half of the box. The boxes that belong to no vehicle are false alarms;
+for each, the nearest moving vehicle (centre distance) tells where it lies: overlapping it (less than
+the rule), beside it (within 1.5 vehicle lengths), or far (farther, or no moving vehicle in the frame).
+It also counts the false alarms whose nearest moving vehicle has a box of its own in that frame.
+
+    python3 tools/false_alarm_places.py SEQUENCE_DIR RESULT_DIR
+"""
+import collections
+import csv
+import math
+import sys
+
+
+def corners(cx, cy, width, length, angle_deg):
+    a = math.radians(angle_deg)
+    c, s = math.cos(a), math.sin(a)
+    return [(cx + dx * c - dy * s, cy + dx * s + dy * c)
+            for dx, dy in ((length / 2, width / 2), (-length / 2, width / 2), (-length / 2, -width / 2), (length / 2, -width / 2))]
+
+
+def area(poly):
+    return abs(sum(poly[i][0] * poly[i - 1][1] - poly[i - 1][0] * poly[i][1] for i in range(len(poly)))) / 2
+
+
+def counter_clockwise(poly):
+    signed = sum(poly[i][0] * poly[i - 1][1] - poly[i - 1][0] * poly[i][1] for i in range(len(poly)))
+    return poly if signed < 0 else poly[::-1]
+
+
+def intersection_area(subject, clip):
+    """Sutherland-Hodgman clipping of two convex polygons."""
+    def inside(p, a, b):
+        return (b[0] - a[0]) * (p[1] - a[1]) - (b[1] - a[1]) * (p[0] - a[0]) >= 0
+
+    def crossing(p, q, a, b):
+        d = (p[0] - q[0]) * (a[1] - b[1]) - (p[1] - q[1]) * (a[0] - b[0])
+        if abs(d) < 1e-12:
+            return q
+        t = ((p[0] - a[0]) * (a[1] - b[1]) - (p[1] - a[1]) * (a[0] - b[0])) / d
+        return (p[0] + t * (q[0] - p[0]), p[1] + t * (q[1] - p[1]))
+
+    out, edges = counter_clockwise(subject), counter_clockwise(clip)
+    for i in range(len(edges)):
+        a, b = edges[i - 1], edges[i]
+        points, out = out, []
+        for j in range(len(points)):
+            p, q = points[j - 1], points[j]
+            if inside(q, a, b):
+                if not inside(p, a, b):
+                    out.append(crossing(p, q, a, b))
+                out.append(q)
+            elif inside(p, a, b):
+                out.append(crossing(p, q, a, b))
+        if not out:
+            return 0.0
+    return area(out) if len(out) >= 3 else 0.0
+
+
+def read_boxes(path, keep):
+    rows = collections.defaultdict(list)
+    with open(path) as f:
+        for r in csv.DictReader(f):
+            if keep(r):
+                box = tuple(float(r[k]) for k in ("cx", "cy", "width", "length", "angle_deg"))
+                rows[int(r["frame"])].append((r, box, corners(*box)))
+    return rows
+
+
+def main():
+    if len(sys.argv) != 3:
+        print(__doc__, file=sys.stderr)
+        sys.exit(2)
+    sequence, result = sys.argv[1], sys.argv[2]
+    try:
+        truth = read_boxes(f"{sequence}/gt/gt_obb.csv", lambda r: True)
+        tracks = read_boxes(f"{result}/tracks_obb.csv", lambda r: r["state"] == "confirmed")
+    except (OSError, KeyError, ValueError) as e:
+        print(f"false_alarm_places: {e}", file=sys.stderr)
+        sys.exit(2)
+    places = collections.Counter()
+    beside_a_found_vehicle = 0
+    for frame, boxes in sorted(tracks.items()):
+        vehicles = truth.get(frame, [])
+        owner = []
+        for _, _, poly in boxes:
+            found = None
+            for g, _, gpoly in vehicles:
+                shared = intersection_area(poly, gpoly)
+                if shared >= 0.5 * area(gpoly) or shared >= 0.5 * area(poly):
+                    found = g["id"]
+                    break
+            owner.append(found)
+        found_vehicles = {o for o in owner if o is not None}
+        for (_, box, poly), o in zip(boxes, owner):
+            if o is not None:
+                continue
+            moving = [(math.hypot(gbox[0] - box[0], gbox[1] - box[1]), g, gbox, gpoly)
+                      for g, gbox, gpoly in vehicles if g["moving"] == "1"]
+            if not moving:
+                places["far"] += 1
+                continue
+            distance, g, gbox, gpoly = min(moving, key=lambda m: m[0])
+            if intersection_area(poly, gpoly) > 0:
+                places["overlapping"] += 1
+            elif distance < 1.5 * gbox[3]:
+                places["beside"] += 1
+            else:
+                places["far"] += 1
+                continue
+            beside_a_found_vehicle += g["id"] in found_vehicles
+    total = sum(places.values())
+    print(f"{result}: {total} false-alarm boxes")
+    for place in ("overlapping", "beside", "far"):
+        print(f"  {place:12s} {places[place]:6d}  {100.0 * places[place] / max(total, 1):5.1f} %")
+    print(f"  near a vehicle that has its own box: {beside_a_found_vehicle} ({100.0 * beside_a_found_vehicle / max(total, 1):.1f} %)")
+
+
+if __name__ == "__main__":
+    main()
