@@ -1,7 +1,5 @@
 // Frame-to-frame homographies against the exact ground truth of warped CLIF texture.
-#include <algorithm>
 #include <cstdio>
-#include <numeric>
 
 #include <gtest/gtest.h>
 
@@ -10,34 +8,12 @@
 namespace uavmot::motion {
 namespace {
 
-struct ErrorStats {
-  double mean = 0, max = 0;
-  int valid = 0;
-};
-
-ErrorStats score(const testing::WarpedSequence& sequence, const std::vector<MotionEstimate>& estimates) {
-  ErrorStats s;
-  std::vector<double> per_frame;
-  const cv::Size size = sequence.options().frame_size;
-  for (size_t i = 1; i < estimates.size(); ++i) {
-    const auto& e = estimates[i];
-    if (!e.quality.valid) continue;
-    ++s.valid;
-    per_frame.push_back(mean_transfer_error(e.homography, sequence.true_homography(static_cast<int>(e.frame_index)),
-                                            size.width, size.height));
-  }
-  if (per_frame.empty()) return s;
-  s.mean = std::accumulate(per_frame.begin(), per_frame.end(), 0.0) / static_cast<double>(per_frame.size());
-  s.max = *std::max_element(per_frame.begin(), per_frame.end());
-  return s;
-}
-
 TEST(HomographyAccuracy, SlowCameraMeanTransferErrorBelowTenthPixel) {
   const testing::WarpedSequence sequence(test::camera(3.0, 0.05));
   const int frames = 40;
   const auto estimates = test::run(sequence, frames);
   EXPECT_FALSE(estimates[0].quality.valid) << "frame 1 has no previous frame";
-  const ErrorStats s = score(sequence, estimates);
+  const test::ErrorStats s = test::transfer_errors(sequence, estimates);
   std::printf("slow camera: %d/%d valid, mean transfer error %.4f px, worst frame %.4f px\n", s.valid, frames - 1,
               s.mean, s.max);
   EXPECT_EQ(s.valid, frames - 1);
@@ -52,7 +28,7 @@ TEST(HomographyAccuracy, FastCameraMeanTransferErrorBelowThirdPixel) {
   const testing::WarpedSequence sequence(options);
   const int frames = 40;
   const auto estimates = test::run(sequence, frames);
-  const ErrorStats s = score(sequence, estimates);
+  const test::ErrorStats s = test::transfer_errors(sequence, estimates);
   std::printf("fast camera: %d/%d valid, mean transfer error %.4f px, worst frame %.4f px\n", s.valid, frames - 1,
               s.mean, s.max);
   EXPECT_EQ(s.valid, frames - 1);

@@ -25,14 +25,14 @@ bool holds(const ImageCrop& w, const cv::Point2d& p) {
 
 std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const OrientedBox& box, const ShiftSearch& search,
                                           const Homography& previous_from_current, const std::vector<ImageCrop>& previous) {
+  const std::vector<double> steps =
+      search.radius_px > 0.0 ? std::vector<double>{0.0, -search.radius_px, search.radius_px} : std::vector<double>{0.0};
   std::vector<cv::Point2d> shifts;
-  for (const double dy : {0.0, -search.radius_px, search.radius_px}) {
-    for (const double dx : {0.0, -search.radius_px, search.radius_px}) {
+  for (const double dy : steps) {
+    for (const double dx : steps) {
       const cv::Point2d s(search.velocity[0] + dx, search.velocity[1] + dy);
       if (std::hypot(s.x, s.y) >= search.min_speed_px) shifts.push_back(s);
-      if (search.radius_px <= 0.0) break;
     }
-    if (search.radius_px <= 0.0) break;
   }
   const cv::Rect2d extent = axis_aligned_bounds(box);
   if (shifts.empty() || !(std::isfinite(extent.x) && std::isfinite(extent.y) && std::isfinite(extent.width) &&
