@@ -1,10 +1,16 @@
-// `uavmot foxglove` reads a chain topic only while a viewer watches it: with no viewer the chain's
-// writers see no bridge reader at all (nothing extra to serialise or send, so the bridge cannot
-// slow the chain), a viewer subscribing to a topic's channel brings the reader, and the reader
+// `uavmot foxglove` stays out of the chain's way. It reads a chain topic only while a viewer
+// watches it: with no viewer the chain's writers see no bridge reader at all (nothing extra to
+// serialise or send), a viewer subscribing to a topic's channel brings the reader, and the reader
 // goes when the last viewer of that topic leaves. The chain is played by this test's own writer on
-// `uavmot/tracks` (live mode: the bridge subscribes without waiting for the writer's health).
+// `uavmot/tracks` (live mode: the bridge subscribes without waiting for the writer's health). And
+// by default each of its threads runs at idle CPU priority.
 
+#include <sched.h>
+
+#include <filesystem>
+#include <fstream>
 #include <regex>
+#include <sstream>
 
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
@@ -46,8 +52,10 @@ uint32_t channel_id(foxglove::TestClient& viewer, const std::string& topic) {
 
 TEST(FoxgloveBridge, ReadsATopicOnlyWhileAViewerWatchesIt) {
   const std::string dir = testing::fresh_dir("foxglove_lazy_readers");
+  // Normal priority: at the default (idle) a bridge beside a busy test on the same cores could wait
+  // seconds for its turn, and this test is about readers, not priority.
   ChildProcess bridge({binary("uavmot-foxglove"), "--port", "0", "--domain", std::to_string(kDomain), "--mode", "live",
-                       "--topics", "uavmot/tracks"},
+                       "--topics", "uavmot/tracks", "--cpu-priority", "normal"},
                       dir + "/bridge.log");
   const uint16_t port = served_port(bridge);
   ASSERT_NE(port, 0) << bridge.log();
@@ -98,6 +106,38 @@ TEST(FoxgloveBridge, ReadsATopicOnlyWhileAViewerWatchesIt) {
   // The viewer's connection closed: its subscriptions end with it.
   EXPECT_TRUE(foxglove::eventually([&] { return writer->matched() == 0; })) << "the reader stayed after the viewer left";
 
+  bridge.signal(SIGTERM);
+  EXPECT_EQ(bridge.wait(std::chrono::seconds(20)), 0) << bridge.log();
+}
+
+// The scheduling policy of every thread of process `pid` (field 41 of /proc/PID/task/TID/stat).
+std::vector<int> thread_policies(pid_t pid) {
+  std::vector<int> policies;
+  for (const auto& task : std::filesystem::directory_iterator("/proc/" + std::to_string(pid) + "/task")) {
+    std::ifstream in(task.path() / "stat");
+    std::string stat((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // After the command name's closing parenthesis, fields start at 3 (state).
+    std::istringstream fields(stat.substr(stat.rfind(')') + 2));
+    std::string field;
+    for (int i = 3; i <= 41 && fields >> field; ++i) {
+      if (i == 41) policies.push_back(std::stoi(field));
+    }
+  }
+  return policies;
+}
+
+// By default the bridge runs only on CPU time the chain leaves: SCHED_IDLE on every thread, those
+// Fast DDS and the WebSocket server start included (the cost of viewers is the bridge's, never the chain's).
+TEST(FoxgloveBridge, EveryThreadRunsAtIdlePriorityByDefault) {
+  const std::string dir = testing::fresh_dir("foxglove_idle_priority");
+  ChildProcess bridge({binary("uavmot-foxglove"), "--port", "0", "--domain", std::to_string(kDomain), "--mode", "live",
+                       "--topics", "uavmot/tracks", "--duration", "30"},
+                      dir + "/bridge.log");
+  ASSERT_NE(served_port(bridge), 0) << bridge.log();
+  const auto policies = thread_policies(bridge.pid());
+  EXPECT_GE(policies.size(), 3u) << "the main thread, Fast DDS's and the server's";
+  for (const int policy : policies) EXPECT_EQ(policy, SCHED_IDLE) << bridge.log();
+  EXPECT_NE(bridge.log().find("CPU priority idle"), std::string::npos) << bridge.log();
   bridge.signal(SIGTERM);
   EXPECT_EQ(bridge.wait(std::chrono::seconds(20)), 0) << bridge.log();
 }

@@ -5,11 +5,18 @@
 # to every channel, counting, not decoding). Per configuration and run:
 #   live:     uavmot-bench-live (mode=live): end-to-end latency median / p99, track lists, drops,
 #             CPU seconds of the chain's components / the bridge / the viewers during the run;
-#   lossless: `uavmot launch` (mode=lossless) wall time -> frames per second.
+#   lossless: `uavmot launch` (mode=lossless) wall time -> frames per second (start-up and
+#             shutdown included; tools/bench/foxglove_summary.py takes the throughput from the
+#             launch logs instead and summarises the runs: `python3 tools/bench/foxglove_summary.py
+#             OUT.txt OUT` with this script's output saved as OUT.txt).
 #   bash tools/bench/foxglove_bench.sh [OUT] [RUNS] [VIEWER ARGS...]   (OUT default out/foxglove_bench, RUNS 2;
 #   VIEWER ARGS e.g. `--prefix uavmot/foxglove/`: viewers take only the Foxglove channels;
 #   DDS domain $UAVMOT_BENCH_DOMAIN, default 64; needs build/bin and tests/foxglove_js's packages;
-#   UAVMOT_BENCH_BRIDGE: another uavmot-foxglove binary to measure, e.g. a copy of main's for A/B runs)
+#   UAVMOT_BENCH_BRIDGE: another uavmot-foxglove binary to measure, e.g. a copy of main's for A/B runs;
+#   UAVMOT_BENCH_BRIDGE_ARGS: more bridge options, e.g. "--cpu-priority normal";
+#   UAVMOT_BENCH_VIEWER_PRIORITY: idle (default) or normal. The viewers stand in for Foxglove on
+#   the operators' own machines; at idle they take only CPU time the chain leaves, as remote ones
+#   would take none, while they still receive and count every message)
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 root=$(pwd)
@@ -20,6 +27,13 @@ domain=${UAVMOT_BENCH_DOMAIN:-64}
 bin=$root/build/bin
 js=$root/tests/foxglove_js
 bridge_bin=${UAVMOT_BENCH_BRIDGE:-$bin/uavmot-foxglove}
+read -r -a bridge_args <<<"${UAVMOT_BENCH_BRIDGE_ARGS:-}"
+viewer_priority=${UAVMOT_BENCH_VIEWER_PRIORITY:-idle}
+case $viewer_priority in
+  idle) viewer_prefix=(chrt --idle 0) ;;
+  normal) viewer_prefix=() ;;
+  *) echo "UAVMOT_BENCH_VIEWER_PRIORITY must be idle or normal, not '$viewer_priority'" >&2; exit 2 ;;
+esac
 source "$root/tests/support/node_packages.sh"
 require_tools foxglove_bench node npm
 install_node_packages "$js"
@@ -36,7 +50,7 @@ cpu_seconds() {
 seq=$out/paper
 [ -f "$seq/seqinfo.ini" ] || "$bin/uavmot" sim --preset paper --seed 1 --frames 250 --out "$seq" --quiet
 gsd=$(sed -n 's/^gsd=//p' "$seq/seqinfo.ini")
-echo "date: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load average: $(cut -d' ' -f1-3 /proc/loadavg), bridge $bridge_bin"
+echo "date: $(date -u '+%Y-%m-%d %H:%M UTC'), $(nproc) cores, load average: $(cut -d' ' -f1-3 /proc/loadavg), bridge $bridge_bin ${bridge_args[*]}, viewers at $viewer_priority priority"
 printf '%-8s %3s | %-11s %-9s %-8s %-12s | %-20s | %-12s | %s\n' config run "live lists" "median" "p99" "drops s/m/s/t" \
   "cpu s chain/br/view" "lossless fps" "bridge"
 for run in $(seq "$runs"); do
@@ -45,12 +59,12 @@ for run in $(seq "$runs"); do
     rm -f "$out/done-$tag" "$out"/ready-$tag-*
     pids=()
     if [[ $config != none ]]; then
-      "$bridge_bin" --port 0 --domain "$domain" --transport local --gsd "$gsd" --fps 25 >"$out/bridge-$tag.log" 2>&1 &
+      "$bridge_bin" --port 0 --domain "$domain" --transport local --gsd "$gsd" --fps 25 "${bridge_args[@]}" >"$out/bridge-$tag.log" 2>&1 &
       bridge=$!
       for _ in $(seq 100); do grep -q serving "$out/bridge-$tag.log" && break; sleep 0.1; done
       port=$(sed -n 's/.*ws:\/\/127\.0\.0\.1:\([0-9]*\).*/\1/p' "$out/bridge-$tag.log" | head -1)
       for v in $(seq "$config"); do
-        node "$js/bench_viewer.mjs" "ws://127.0.0.1:$port" --ready "$out/ready-$tag-$v" --done "$out/done-$tag" "${viewer_args[@]}" >"$out/viewer-$tag-$v.log" 2>&1 &
+        "${viewer_prefix[@]}" node "$js/bench_viewer.mjs" "ws://127.0.0.1:$port" --ready "$out/ready-$tag-$v" --done "$out/done-$tag" "${viewer_args[@]}" >"$out/viewer-$tag-$v.log" 2>&1 &
         pids+=($!)
       done
       for v in $(seq "$config"); do

@@ -17,6 +17,7 @@
 #include <spdlog/spdlog.h>
 
 #include "uavmot/core/app.hpp"
+#include "uavmot/core/cpu_priority.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/core/shutdown.hpp"
 #include "uavmot/dds/node_options.hpp"
@@ -204,7 +205,7 @@ int foxglove_main(int argc, char** argv) {
   node.heap_reserve_mb = 0;
   foxglove::WsServerOptions server_options;
   std::vector<std::string> topics, exclude;
-  std::string image_format = "jpeg";
+  std::string image_format = "jpeg", cpu_priority = "idle";
   record::FoxgloveOptions options;
   uint64_t client_buffer_mb = 32;
   double duration_s = 0.0, image_fps = 10.0;
@@ -237,8 +238,15 @@ int foxglove_main(int argc, char** argv) {
         ->capture_default_str();
     app.add_option("--duration", duration_s, "stop after this many seconds (default: until Ctrl-C / SIGTERM)")
         ->check(uavmot::non_negative_finite());
+    app.add_option("--cpu-priority", cpu_priority,
+                   "idle: the bridge runs only on CPU time the chain leaves (SCHED_IDLE; viewers lose images "
+                   "when the cores are busy, the chain loses nothing); normal: shares the cores evenly with the chain")
+        ->check(CLI::IsMember({"idle", "normal"}))
+        ->capture_default_str();
     dds::add_node_options(app, node);
     return [&]() -> int {
+      // First, so every thread the DDS participant and the WebSocket server start inherits it.
+      set_cpu_priority(parse_cpu_priority(cpu_priority));
       dds::finalize(node, "foxglove");
       options.image_format = foxglove::parse_image_format(image_format);
       server_options.client_buffer_bytes = client_buffer_mb << 20;
@@ -257,8 +265,8 @@ int foxglove_main(int argc, char** argv) {
           return std::make_unique<TypedBridge<P>>(participant, spec, idl_dir, options, server, starts.get(), image_interval_ns);
         }));
       }
-      spdlog::info("foxglove: serving {} {} topics on ws://{}:{} (Foxglove: Open connection -> Foxglove WebSocket)",
-                   chosen.size(), downlink ? "link" : "uavmot", server_options.address, server.port());
+      spdlog::info("foxglove: serving {} {} topics on ws://{}:{} (Foxglove: Open connection -> Foxglove WebSocket), CPU priority {}",
+                   chosen.size(), downlink ? "link" : "uavmot", server_options.address, server.port(), cpu_priority);
       const auto start = std::chrono::steady_clock::now();
       while (!shutdown_requested()) {
         if (starts) starts->update();
