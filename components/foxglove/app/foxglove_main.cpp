@@ -245,8 +245,13 @@ int foxglove_main(int argc, char** argv) {
         ->capture_default_str();
     dds::add_node_options(app, node);
     return [&]() -> int {
-      // First, so every thread the DDS participant and the WebSocket server start inherits it.
-      set_cpu_priority(parse_cpu_priority(cpu_priority));
+      // First, so every thread the DDS participant and the WebSocket server start inherits it. A
+      // sandbox that forbids the call (a seccomp profile) costs the chain CPU, not the viewers their data.
+      try {
+        set_cpu_priority(parse_cpu_priority(cpu_priority));
+      } catch (const InputError& e) {
+        spdlog::warn("foxglove: {}; running at the scheduler's default priority", e.what());
+      }
       dds::finalize(node, "foxglove");
       options.image_format = foxglove::parse_image_format(image_format);
       server_options.client_buffer_bytes = client_buffer_mb << 20;
@@ -266,7 +271,7 @@ int foxglove_main(int argc, char** argv) {
         }));
       }
       spdlog::info("foxglove: serving {} {} topics on ws://{}:{} (Foxglove: Open connection -> Foxglove WebSocket), CPU priority {}",
-                   chosen.size(), downlink ? "link" : "uavmot", server_options.address, server.port(), cpu_priority);
+                   chosen.size(), downlink ? "link" : "uavmot", server_options.address, server.port(), to_string(current_cpu_priority()));
       const auto start = std::chrono::steady_clock::now();
       while (!shutdown_requested()) {
         if (starts) starts->update();
