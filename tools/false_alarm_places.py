@@ -6,7 +6,10 @@ moving or not) as `uavmot eval` decides it: the exact intersection of the orient
 least half of the vehicle or half of the box. The boxes that belong to no vehicle are false alarms;
 for each, the nearest moving vehicle (centre distance) tells where it lies: overlapping it (less than
 the rule), beside it (within 1.5 vehicle lengths), or far (farther, or no moving vehicle in the frame).
-It also counts the false alarms whose nearest moving vehicle has a box of its own in that frame.
+It also counts the false alarms whose nearest moving vehicle has a box of its own in that frame, and
+splits those overlapping a vehicle by whether that vehicle has its own box (else the box is a
+misplaced box of a vehicle the run missed: one miss and one false alarm) and by the box's area
+against the vehicle's (larger: over 1.5 x; smaller: under 0.67 x; else similar).
 
     python3 tools/false_alarm_places.py SEQUENCE_DIR RESULT_DIR
 """
@@ -83,6 +86,7 @@ def main():
         print(f"false_alarm_places: {e}", file=sys.stderr)
         sys.exit(2)
     places = collections.Counter()
+    overlapping = collections.Counter()  # (vehicle has its own box or was missed, box size) -> boxes
     beside_a_found_vehicle = 0
     for frame, boxes in sorted(tracks.items()):
         vehicles = truth.get(frame, [])
@@ -107,6 +111,9 @@ def main():
             distance, g, gbox, gpoly = min(moving, key=lambda m: m[0])
             if intersection_area(poly, gpoly) > 0:
                 places["overlapping"] += 1
+                ratio = area(poly) / max(area(gpoly), 1e-9)
+                size = "larger" if ratio > 1.5 else "smaller" if ratio < 0.67 else "similar"
+                overlapping["own box" if g["id"] in found_vehicles else "missed", size] += 1
             elif distance < 1.5 * gbox[3]:
                 places["beside"] += 1
             else:
@@ -118,6 +125,10 @@ def main():
     for place in ("overlapping", "beside", "far"):
         print(f"  {place:12s} {places[place]:6d}  {100.0 * places[place] / max(total, 1):5.1f} %")
     print(f"  near a vehicle that has its own box: {beside_a_found_vehicle} ({100.0 * beside_a_found_vehicle / max(total, 1):.1f} %)")
+    for own in ("missed", "own box"):
+        label = "on a vehicle the run missed" if own == "missed" else "on a vehicle with its own box"
+        sizes = ", ".join(f"{size} {overlapping[own, size]}" for size in ("similar", "larger", "smaller"))
+        print(f"  overlapping, {label}: {sum(overlapping[own, s] for s in ('similar', 'larger', 'smaller'))} ({sizes})")
 
 
 if __name__ == "__main__":
