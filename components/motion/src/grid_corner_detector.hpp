@@ -44,7 +44,10 @@ class GridCornerDetector {
  public:
   explicit GridCornerDetector(const MotionOptions& options) : options_(options) {}
   std::vector<cv::Point2f> detect(const cv::Mat& gray, const std::vector<cv::Point2f>& existing, bool continuous);
-  void reset() { retry_at_.clear(); }
+  void reset() {  // as constructed
+    retry_at_.clear();
+    calls_ = 0;
+  }
 
   // What carries over from call to call (a saved estimator state).
   struct State {
@@ -53,6 +56,7 @@ class GridCornerDetector {
     std::vector<int64_t> retry_at;
   };
   State state() const { return {calls_, size_, retry_at_}; }
+  int64_t calls() const { return calls_; }  // frames searched since construction or reset()
   void restore(State state) {
     calls_ = state.calls;
     size_ = state.size;

@@ -285,7 +285,8 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   }
   // Static 3-D structure moves along its epipolar line: that part is no independent motion. The
   // reported velocity stays relative to the ground plane; only the decision sees what is left.
-  parallax_.fit(samples, current.size, out.frame_index);
+  // The detector has run once per earlier frame since the estimator started or was reset.
+  parallax_.fit(samples, current.size, out.frame_index, detector_.calls() + 1);
   std::vector<VelocityEstimate> decided(survivors.size());
   std::vector<double> speeds;
   speeds.reserve(survivors.size());

@@ -116,7 +116,8 @@ cv::Vec2d epipolar_direction(const cv::Vec3d& epipole, const cv::Point2f& point)
   return n > 1e-12 ? u * (1.0 / n) : cv::Vec2d(0, 0);
 }
 
-const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samples, cv::Size image_size, int64_t frame_index) {
+const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samples, cv::Size image_size, int64_t frame_index,
+                                         int64_t stream_frame) {
   const MotionOptions& o = options_;
   const ParallaxModel previous = model_;
   model_ = ParallaxModel{};
@@ -240,16 +241,22 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
   // Structure covers the scene with texture; traffic on a few roads gives few supporters for the
   // area, however well they line up (a road along the flight line, cars slower than the cap).
   const double megapixels = static_cast<double>(image_size.area()) * 1e-6;
-  model_.valid = model_.support >= o.parallax_min_support && model_.support >= o.parallax_min_support_density * megapixels &&
-                 model_.support >= o.parallax_min_share * static_cast<double>(samples.size()) &&
-                 model_.support >= o.parallax_min_support_fraction * static_cast<double>(significant.size()) &&
-                 model_.spread_px >= o.parallax_min_spread * min_side && model_.stable_frames >= o.parallax_stable_frames;
-  if (!model_.valid) supporters_.clear();
+  const bool all_but_density = model_.support >= o.parallax_min_support &&
+                               model_.support >= o.parallax_min_share * static_cast<double>(samples.size()) &&
+                               model_.support >= o.parallax_min_support_fraction * static_cast<double>(significant.size()) &&
+                               model_.spread_px >= o.parallax_min_spread * min_side &&
+                               model_.stable_frames >= o.parallax_stable_frames;
+  model_.valid = all_but_density && model_.support >= o.parallax_min_support_density * megapixels;
+  // In a stream's first frames the supporters are few because few features have the history that
+  // makes a residual significant, not because the structure is: on `urban3d` the density was short
+  // for frames 6-13 while every roof moved, and the tracks started then stayed on the roofs.
+  model_.provisional = !model_.valid && all_but_density && stream_frame <= o.parallax_startup_frames;
+  if (!model_.valid && !model_.provisional) supporters_.clear();
   return model_;
 }
 
 cv::Vec2d ParallaxFilter::independent_velocity(const ParallaxSample& sample) const {
-  if (!model_.valid) return sample.velocity;
+  if (!model_.valid && !model_.provisional) return sample.velocity;
   cv::Vec2d u = epipolar_direction(model_.epipole, sample.position);
   if (model_.side != 0) u *= static_cast<double>(model_.side);
   double along = sample.velocity.dot(u);

@@ -40,6 +40,8 @@ struct ParallaxSample {
 
 struct ParallaxModel {
   bool valid = false;          // trusted: used to explain velocities
+  bool provisional = false;    // a stream's first frames: every condition but the support density met,
+                               // also used to explain velocities (not carried to the next frame)
   cv::Vec3d epipole{0, 0, 0};  // homogeneous, image coordinates of the current frame
   int side = 1;                // structure's residual points along side * epipolar_direction(); 0 = either way
   int candidates = 0;          // features with a residual clearly above their noise
@@ -54,15 +56,17 @@ class ParallaxFilter {
   explicit ParallaxFilter(const MotionOptions& options) : options_(options) {}
 
   // Fits this frame's epipole to the samples (deterministic: the hypotheses are drawn from a
-  // generator seeded by `frame_index`). Returns the model, valid only when trusted.
-  const ParallaxModel& fit(const std::vector<ParallaxSample>& samples, cv::Size image_size, int64_t frame_index);
+  // generator seeded by `frame_index`). `stream_frame`: 1 for the estimator's first frame since it
+  // started or was reset. Returns the model, valid only when trusted.
+  const ParallaxModel& fit(const std::vector<ParallaxSample>& samples, cv::Size image_size, int64_t frame_index,
+                           int64_t stream_frame);
 
   // The part of `sample.velocity` that parallax does not explain under `model` (the velocity
-  // itself when the model is not valid).
+  // itself when the model is neither valid nor provisional).
   cv::Vec2d independent_velocity(const ParallaxSample& sample) const;
 
   const ParallaxModel& model() const { return model_; }
-  // Where the last fit found structure: the positions of its supporters (empty unless valid).
+  // Where the last fit found structure: the positions of its supporters (empty unless valid or provisional).
   const std::vector<cv::Point2f>& supporters() const { return supporters_; }
   void reset() {
     model_ = ParallaxModel{};

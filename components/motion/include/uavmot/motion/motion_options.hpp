@@ -92,6 +92,7 @@ struct MotionOptions {
                                        // everywhere; movers (which can line up at a junction) are few
   double parallax_min_spread = 0.1;    // ... spread over this fraction of the smaller image side (1-sigma)
   int parallax_stable_frames = 3;      // ... found again, within parallax_stable_angle_deg, this many frames running
+  int parallax_startup_frames = 20;    // in the first this many frames, a model short only of the density explains too (0 = off)
   double parallax_stable_angle_deg = 8.0;
   double parallax_across_sigma = 3.0;  // on a line: across-line velocity <= this * sigma + the floor
   double parallax_across_floor_px = 0.05;
@@ -185,6 +186,7 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("parallax_min_share", o.parallax_min_share, Range<double>{0.0, 1.0});
   visit("parallax_min_spread", o.parallax_min_spread, Range<double>{0.0, 1.0});
   visit("parallax_stable_frames", o.parallax_stable_frames, Range<int>{1, 1000});
+  visit("parallax_startup_frames", o.parallax_startup_frames, Range<int>{0, 100000});
   visit("parallax_stable_angle_deg", o.parallax_stable_angle_deg, Range<double>{0.0, 90.0});
   visit("parallax_across_sigma", o.parallax_across_sigma, Range<double>{0.0, 100.0});
   visit("parallax_across_floor_px", o.parallax_across_floor_px, Range<double>{0.0, 100.0});
