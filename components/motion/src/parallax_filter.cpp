@@ -241,16 +241,18 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
   // Structure covers the scene with texture; traffic on a few roads gives few supporters for the
   // area, however well they line up (a road along the flight line, cars slower than the cap).
   const double megapixels = static_cast<double>(image_size.area()) * 1e-6;
-  const bool all_but_density = model_.support >= o.parallax_min_support &&
-                               model_.support >= o.parallax_min_share * static_cast<double>(samples.size()) &&
-                               model_.support >= o.parallax_min_support_fraction * static_cast<double>(significant.size()) &&
-                               model_.spread_px >= o.parallax_min_spread * min_side &&
-                               model_.stable_frames >= o.parallax_stable_frames;
+  const bool shape = model_.support >= o.parallax_min_support &&
+                     model_.support >= o.parallax_min_share * static_cast<double>(samples.size()) &&
+                     model_.support >= o.parallax_min_support_fraction * static_cast<double>(significant.size()) &&
+                     model_.spread_px >= o.parallax_min_spread * min_side;
+  const bool stable = model_.stable_frames >= o.parallax_stable_frames;
+  const bool all_but_density = shape && stable;
   model_.valid = all_but_density && model_.support >= o.parallax_min_support_density * megapixels;
   // In a stream's first frames the supporters are few because few features have the history that
-  // makes a residual significant, not because the structure is: on `urban3d` the density was short
-  // for frames 6-13 while every roof moved, and the tracks started then stayed on the roofs.
-  model_.provisional = !model_.valid && all_but_density && stream_frame <= o.parallax_startup_frames;
+  // makes a residual significant, not because the structure is, and the stability count has only
+  // just begun: on `urban3d` the density was short for frames 6-13 (seed 100), the stability for
+  // frames 3-4 (seed 101), while every roof moved, and the tracks started then stayed on the roofs.
+  model_.provisional = !model_.valid && shape && stream_frame <= o.parallax_startup_frames;
   if (!model_.valid && !model_.provisional) supporters_.clear();
   return model_;
 }

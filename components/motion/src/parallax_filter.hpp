@@ -40,8 +40,8 @@ struct ParallaxSample {
 
 struct ParallaxModel {
   bool valid = false;          // trusted: used to explain velocities
-  bool provisional = false;    // a stream's first frames: every condition but the support density met,
-                               // also used to explain velocities (not carried to the next frame)
+  bool provisional = false;    // a stream's first frames: trusted without the support density and the
+                               // stability count, also used to explain velocities (not carried on)
   cv::Vec3d epipole{0, 0, 0};  // homogeneous, image coordinates of the current frame
   int side = 1;                // structure's residual points along side * epipolar_direction(); 0 = either way
   int candidates = 0;          // features with a residual clearly above their noise

@@ -337,10 +337,10 @@ TEST(ParallaxDirection, PointsAwayFromAFiniteEpipoleAndAlongOneAtInfinity) {
 
 
 // A stream's first frames: the features' histories are short, so fewer residuals are significant
-// than the structure will give, and the support density falls short while every other condition
-// holds. Then the model explains velocities provisionally; later in the stream the same shortfall
+// than the structure will give, and the support density falls short while the other conditions
+// hold. Then the model explains velocities provisionally; later in the stream the same shortfall
 // means the scene has no structure to speak of (the traffic of one road), and it explains nothing.
-TEST_F(ParallaxScene, AModelShortOnlyOfDensityExplainsOnlyInAStreamsFirstFrames) {
+TEST_F(ParallaxScene, AModelShortOfDensityExplainsOnlyInAStreamsFirstFrames) {
   const int first = 20, frames = 8;
   build(first, 200);  // 200 roof points: under the density floor (315 supporters at 1024 x 768)
   const ScenePoint roof20{{camera(first).centre[0] + 40, camera(first).centre[1] - 30, -20.0}};
@@ -369,6 +369,26 @@ TEST_F(ParallaxScene, AModelShortOnlyOfDensityExplainsOnlyInAStreamsFirstFrames)
       EXPECT_EQ(roof_left, roof_velocity) << "past the start, a model under the floor explains nothing";
     }
   }
+}
+
+// ... and from its very first fit: the stability count (parallax_stable_frames) has not begun yet
+// while the roofs' features are already classified.
+TEST_F(ParallaxScene, AStreamsFirstFitExplainsBeforeTheModelIsStable) {
+  const int now = 20;
+  build(now);  // 500 roof points: over the density floor, but a single fit is not yet stable
+  const ScenePoint roof20{{camera(now).centre[0] + 40, camera(now).centre[1] - 30, -20.0}};
+  std::mt19937_64 rng(11);
+  std::vector<ParallaxSample> samples;
+  for (const auto& p : background_) samples.push_back(sample_of(p, now, velocity_of(p, now, rng)));
+  const VelocityEstimate v = velocity_of(roof20, now, rng);
+  ParallaxFilter at_start(options_), later(options_);
+  const ParallaxModel start_model = at_start.fit(samples, kSize, now, 3);
+  EXPECT_FALSE(start_model.valid) << "one fit cannot be stable";
+  EXPECT_TRUE(start_model.provisional) << "support " << start_model.support << " spread " << start_model.spread_px;
+  EXPECT_LT(cv::norm(at_start.independent_velocity(sample_of(roof20, now, v))), 0.05);
+  const ParallaxModel later_model = later.fit(samples, kSize, now, kPastStartup);
+  EXPECT_FALSE(later_model.valid || later_model.provisional);
+  EXPECT_EQ(later.independent_velocity(sample_of(roof20, now, v)), v.velocity);
 }
 
 }  // namespace

@@ -92,7 +92,7 @@ struct MotionOptions {
                                        // everywhere; movers (which can line up at a junction) are few
   double parallax_min_spread = 0.1;    // ... spread over this fraction of the smaller image side (1-sigma)
   int parallax_stable_frames = 3;      // ... found again, within parallax_stable_angle_deg, this many frames running
-  int parallax_startup_frames = 20;    // in the first this many frames, a model short only of the density explains too (0 = off)
+  int parallax_startup_frames = 20;    // in the first this many frames, a model short of the density or stability explains too (0 = off)
   double parallax_stable_angle_deg = 8.0;
   double parallax_across_sigma = 3.0;  // on a line: across-line velocity <= this * sigma + the floor
   double parallax_across_floor_px = 0.05;
