@@ -74,14 +74,34 @@ def read_boxes(path, keep):
     return rows
 
 
+def belongs(box, thing):
+    """`uavmot eval`'s rule: the box covers at least half of the thing, or half of the box lies on it."""
+    shared = intersection_area(box, thing)
+    return shared >= 0.5 * area(thing) or shared >= 0.5 * area(box)
+
+
+def read_run(sequence, result):
+    """Every ground-truth vehicle, the confirmed track boxes and the frame each track first appeared
+    in (tentative included), by frame; tracks_obb.csv is read once."""
+    truth = read_boxes(f"{sequence}/gt/gt_obb.csv", lambda r: True)
+    every_track = read_boxes(f"{result}/tracks_obb.csv", lambda r: True)
+    confirmed = collections.defaultdict(list)
+    started = {}
+    for frame in sorted(every_track):
+        for row in every_track[frame]:
+            started.setdefault(int(row[0]["id"]), frame)
+            if row[0]["state"] == "confirmed":
+                confirmed[frame].append(row)
+    return truth, confirmed, started
+
+
 def main():
     if len(sys.argv) != 3:
         print(__doc__, file=sys.stderr)
         sys.exit(2)
     sequence, result = sys.argv[1], sys.argv[2]
     try:
-        truth = read_boxes(f"{sequence}/gt/gt_obb.csv", lambda r: True)
-        tracks = read_boxes(f"{result}/tracks_obb.csv", lambda r: r["state"] == "confirmed")
+        truth, tracks, _ = read_run(sequence, result)
     except (OSError, KeyError, ValueError) as e:
         print(f"false_alarm_places: {e}", file=sys.stderr)
         sys.exit(2)
@@ -94,8 +114,7 @@ def main():
         for _, _, poly in boxes:
             found = None
             for g, _, gpoly in vehicles:
-                shared = intersection_area(poly, gpoly)
-                if shared >= 0.5 * area(gpoly) or shared >= 0.5 * area(poly):
+                if belongs(poly, gpoly):
                     found = g["id"]
                     break
             owner.append(found)

@@ -19,7 +19,7 @@ import csv
 import math
 import sys
 
-from false_alarm_places import area, corners, intersection_area, read_boxes
+from false_alarm_places import belongs, corners, read_run
 
 
 def inside_convex(point, poly):
@@ -39,8 +39,7 @@ def main():
     parser.add_argument("--first-frame", type=int, default=11)
     args = parser.parse_args()
     try:
-        every_vehicle = read_boxes(f"{args.sequence}/gt/gt_obb.csv", lambda r: True)
-        tracks = read_boxes(f"{args.result}/tracks_obb.csv", lambda r: r["state"] == "confirmed")
+        every_vehicle, tracks, _ = read_run(args.sequence, args.result)
         moving_features = collections.defaultdict(list)
         with open(f"{args.result}/features.csv") as f:
             for r in csv.DictReader(f):
@@ -76,7 +75,7 @@ def main():
             instances += 1
             slow = speed_class(int(g["id"]), frame)
             slow_instances[slow] += 1
-            if any(intersection_area(poly, p) >= 0.5 * min(area(poly), area(p)) for _, _, p in tracks.get(frame, [])):
+            if any(belongs(p, poly) for _, _, p in tracks.get(frame, [])):
                 continue
             slow_missed[slow] += 1
             grown = corners(box[0], box[1], box[2] + 3.0, box[3] + 3.0, box[4])

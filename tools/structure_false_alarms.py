@@ -15,7 +15,7 @@ import collections
 import csv
 import sys
 
-from false_alarm_places import area, intersection_area, read_boxes
+from false_alarm_places import belongs, read_run
 
 
 def convex_hull(points):
@@ -43,31 +43,22 @@ def main():
     parser.add_argument("--top", type=int, default=5)
     args = parser.parse_args()
     try:
-        truth = read_boxes(f"{args.sequence}/gt/gt_obb.csv", lambda r: True)
-        tracks = read_boxes(f"{args.result}/tracks_obb.csv", lambda r: r["state"] == "confirmed")
+        truth, tracks, birth = read_run(args.sequence, args.result)
         structures = collections.defaultdict(list)
         with open(f"{args.sequence}/gt/structures.csv") as f:
             for r in csv.DictReader(f):
                 v = [float(x) for x in r["outline"].split()]
                 structures[int(r["frame"])].append((r["kind"], int(r["id"]), convex_hull(list(zip(v[0::2], v[1::2])))))
-        birth = {}
-        with open(f"{args.result}/tracks_obb.csv") as f:
-            for r in csv.DictReader(f):
-                birth.setdefault(int(r["id"]), int(r["frame"]))
     except (OSError, KeyError, ValueError) as e:
         print(f"structure_false_alarms: {e}", file=sys.stderr)
         sys.exit(2)
     by_kind, by_birth, by_track = collections.Counter(), collections.Counter(), collections.Counter()
     for frame, boxes in sorted(tracks.items()):
         for r, _, poly in boxes:
-            if any((lambda shared: shared >= 0.5 * area(gpoly) or shared >= 0.5 * area(poly))(intersection_area(poly, gpoly))
-                   for _, _, gpoly in truth.get(frame, [])):
+            if any(belongs(poly, gpoly) for _, _, gpoly in truth.get(frame, [])):
                 continue
             for kind, structure_id, hull in structures.get(frame, []):
-                if len(hull) < 3:
-                    continue
-                shared = intersection_area(poly, hull)
-                if shared >= 0.5 * area(poly) or shared >= 0.5 * area(hull):
+                if len(hull) >= 3 and belongs(poly, hull):
                     track = int(r["id"])
                     by_kind[kind] += 1
                     by_birth["early" if birth[track] <= args.early_frame else "later"] += 1

@@ -245,9 +245,8 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
                      model_.support >= o.parallax_min_share * static_cast<double>(samples.size()) &&
                      model_.support >= o.parallax_min_support_fraction * static_cast<double>(significant.size()) &&
                      model_.spread_px >= o.parallax_min_spread * min_side;
-  const bool stable = model_.stable_frames >= o.parallax_stable_frames;
-  const bool all_but_density = shape && stable;
-  model_.valid = all_but_density && model_.support >= o.parallax_min_support_density * megapixels;
+  model_.valid = shape && model_.stable_frames >= o.parallax_stable_frames &&
+                 model_.support >= o.parallax_min_support_density * megapixels;
   // In a stream's first frames the supporters are few because few features have the history that
   // makes a residual significant, not because the structure is, and the stability count has only
   // just begun: on `urban3d` the density was short for frames 6-13 (seed 100), the stability for

@@ -335,7 +335,6 @@ TEST(ParallaxDirection, PointsAwayFromAFiniteEpipoleAndAlongOneAtInfinity) {
   EXPECT_EQ(epipolar_direction({100, 100, 1}, cv::Point2f(100, 100)), cv::Vec2d(0, 0));
 }
 
-
 // A stream's first frames: the features' histories are short, so fewer residuals are significant
 // than the structure will give, and the support density falls short while the other conditions
 // hold. Then the model explains velocities provisionally; later in the stream the same shortfall
