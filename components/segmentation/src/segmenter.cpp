@@ -97,9 +97,27 @@ SegmentationInput make_segmentation_input(const Frame& frame, const std::vector<
   return input;
 }
 
-Segmenter::Segmenter(SegmentationOptions options, SceneInfo scene) : options_(std::move(options)), scene_(scene) {
-  validate(options_);
-  validate_scene(scene_);
+namespace {
+SegmentationOptions validated(SegmentationOptions o) {
+  validate(o);
+  return o;
+}
+SceneInfo validated(SceneInfo s) {
+  validate_scene(s);
+  return s;
+}
+ShadowOffsetOptions shadow_options(const RegionOptions& r, const SceneInfo& scene) {
+  ShadowOffsetOptions o;
+  o.max_offset_px = r.shadow_correction_factor > 0.0 ? scene.metres_to_px(r.shadow_max_m) : 0.0;
+  o.bright_margin = r.shadow_bright_margin;
+  o.memory_frames = r.shadow_memory_frames;
+  o.min_regions = r.shadow_min_regions;
+  return o;
+}
+}  // namespace
+
+Segmenter::Segmenter(SegmentationOptions options, SceneInfo scene)
+    : options_(validated(std::move(options))), scene_(validated(scene)), shadow_(shadow_options(options_.regions, scene_)) {
   references_.fill(1.0);
   for (SegmentationMethod method : kSegmentationMethods) {
     if (const Gradient gradient = method_gradient(method).gradient) {
@@ -227,6 +245,8 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
                            previous_frame_ + 1 == motion.frame_index && motion.quality.valid && is_finite(motion.homography);
   const Homography previous_from_current = shift_check ? motion.homography.inv() : Homography::eye();
   std::vector<ImageCrop> windows;
+  if (previous_stream_ != motion.stream_id) shadow_.reset();
+  shadow_.begin_frame();
 
   std::vector<Region> candidates;
   for (const auto& c : result.clusters) {
@@ -268,6 +288,7 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
         }
         windows.push_back(std::move(current));
       }
+      for (const Region& region : regions) shadow_.observe(gray, window.tl(), region.box);
     } else {
       ++stats_.windows_without_pixels;
     }
@@ -288,6 +309,15 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
       return covered_fraction(candidate.box, kept.box) > options_.regions.duplicate_overlap;
     });
     if (duplicate) ++stats_.duplicate_regions; else result.regions.push_back(candidate);
+  }
+  // Gradient blobs hold the vehicle's shadow; boxes made from the features (method=clustering) are left.
+  if (const auto shadow = shadow_.offset(); shadow && r.shadow_correction_factor > 0.0) {
+    stats_.shadow_offset_px = *shadow;
+    for (Region& region : result.regions) {
+      if (region.method == SegmentationMethod::Clustering) continue;
+      region.box.cx -= r.shadow_correction_factor * (*shadow)[0];
+      region.box.cy -= r.shadow_correction_factor * (*shadow)[1];
+    }
   }
   previous_stream_ = motion.stream_id;
   previous_frame_ = motion.frame_index;

@@ -123,6 +123,18 @@ struct RegionOptions {
   // A region whose box is covered by an earlier region's box for more than this fraction of
   // its area is a duplicate (nested blob, or the same blob seen from two cluster windows).
   double duplicate_overlap = 0.5;
+  // In sunlight a vehicle's blob is its body and its shadow, so every box sits half a shadow toward
+  // the shadow's side. The shadow's image offset is learnt from the regions (bright bodies, the dark
+  // band at the box's far end; docs/segmentation.md, "Shadows") and each gradient region's centre
+  // moves back by `shadow_correction_factor` x that offset (0 disables). Offsets are searched up to
+  // `shadow_max_m`; a region votes when its body's upper quartile is `shadow_bright_margin` grey
+  // levels above the road around it; votes fade over `shadow_memory_frames` and the offset is used
+  // once `shadow_min_regions` (faded) have voted.
+  double shadow_correction_factor = 1.0;
+  double shadow_max_m = 2.0;
+  double shadow_bright_margin = 15.0;
+  double shadow_memory_frames = 50.0;
+  double shadow_min_regions = 30.0;
 };
 
 struct SegmentationOptions {

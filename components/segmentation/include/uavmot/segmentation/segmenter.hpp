@@ -27,6 +27,7 @@
 #include "uavmot/core/scene_info.hpp"
 #include "uavmot/segmentation/feature_clustering.hpp"
 #include "uavmot/segmentation/segmentation_options.hpp"
+#include "uavmot/segmentation/shadow_offset.hpp"
 
 namespace uavmot::segmentation {
 
@@ -58,6 +59,7 @@ struct SegmentationStats {
   size_t fallback_regions = 0;        // feature boxes added where the gradients found nothing
   size_t duplicate_regions = 0;       // regions dropped as duplicates of an earlier one
   size_t static_regions = 0;          // regions dropped by the shift check (static texture)
+  std::optional<cv::Vec2d> shadow_offset_px;  // the shadow offset the regions were corrected by, if any
 };
 
 class Segmenter {
@@ -100,6 +102,7 @@ class Segmenter {
   std::string previous_stream_;
   int64_t previous_frame_ = -1;
   std::vector<ImageCrop> previous_windows_;
+  ShadowOffset shadow_;
 };
 
 }  // namespace uavmot::segmentation

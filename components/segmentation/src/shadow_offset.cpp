@@ -1,0 +1,162 @@
+#include "uavmot/segmentation/shadow_offset.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+namespace uavmot::segmentation {
+namespace {
+
+// Darkness (road level minus grey) summed by distance from one edge of the box, in bins of the
+// candidate step: inside the box (depth from the edge) and outside it (distance beyond the edge).
+struct EdgeBands {
+  std::vector<double> inside, outside;
+  explicit EdgeBands(size_t bins) : inside(bins, 0.0), outside(bins, 0.0) {}
+};
+
+// One axis of a box: the bands at its + and - ends, as sums over the first k bins.
+struct AxisBands {
+  EdgeBands plus, minus;
+  explicit AxisBands(size_t bins) : plus(bins), minus(bins) {}
+
+  void add(double coordinate, double half_extent, double darkness, double step) {
+    const auto bins = static_cast<double>(plus.inside.size());
+    auto bin = [&](double distance) { return static_cast<size_t>(std::min(bins - 1.0, std::floor(distance / step))); };
+    const double beyond_plus = coordinate - half_extent, beyond_minus = -half_extent - coordinate;
+    if (beyond_plus > 0.0) {
+      if (beyond_plus < bins * step) plus.outside[bin(beyond_plus)] += darkness;
+    } else if (-beyond_plus < bins * step) {
+      plus.inside[bin(-beyond_plus)] += darkness;
+    }
+    if (beyond_minus > 0.0) {
+      if (beyond_minus < bins * step) minus.outside[bin(beyond_minus)] += darkness;
+    } else if (-beyond_minus < bins * step) {
+      minus.inside[bin(-beyond_minus)] += darkness;
+    }
+  }
+
+  // Running sums, so that band(k) is the sum of the first k bins.
+  void accumulate() {
+    for (std::vector<double>* v : {&plus.inside, &plus.outside, &minus.inside, &minus.outside}) {
+      double sum = 0.0;
+      for (double& x : *v) x = (sum += x);
+    }
+  }
+
+  // The vote of a shadow offset t along this axis (k bins of width): its band inside the box at the
+  // far end of t, less the band outside the opposite end.
+  double vote(double t, double step) const {
+    const auto k = static_cast<size_t>(std::lround(std::abs(t) / step));
+    if (k == 0) return 0.0;
+    const size_t i = std::min(k, plus.inside.size()) - 1;
+    return t > 0.0 ? plus.inside[i] - minus.outside[i] : minus.inside[i] - plus.outside[i];
+  }
+};
+
+}  // namespace
+
+namespace {
+// At most this many candidates per side of zero: a long search (a fine GSD) takes coarser steps.
+constexpr int kMaxHalf = 48;
+ShadowOffsetOptions bounded(ShadowOffsetOptions o) {
+  if (!(o.max_offset_px > 0.0) || !std::isfinite(o.max_offset_px)) o.max_offset_px = 0.0;
+  o.step_px = std::max(o.step_px, o.max_offset_px / kMaxHalf);
+  return o;
+}
+}  // namespace
+
+ShadowOffset::ShadowOffset(ShadowOffsetOptions options)
+    : options_(bounded(options)),
+      half_(options_.step_px > 0.0 ? static_cast<int>(std::floor(options_.max_offset_px / options_.step_px)) : 0),
+      score_(static_cast<size_t>((2 * half_ + 1) * (2 * half_ + 1)), 0.0) {}
+
+void ShadowOffset::reset() {
+  std::fill(score_.begin(), score_.end(), 0.0);
+  votes_ = 0.0;
+}
+
+void ShadowOffset::begin_frame() {
+  const double keep = options_.memory_frames > 1.0 ? 1.0 - 1.0 / options_.memory_frames : 0.0;
+  for (double& s : score_) s *= keep;
+  votes_ *= keep;
+}
+
+void ShadowOffset::observe(const cv::Mat& gray, cv::Point origin, const OrientedBox& box) {
+  if (half_ == 0 || gray.type() != CV_8UC1 || !is_finite(box) || !(box.length > 1.0) || !(box.width > 1.0)) return;
+  const double step = options_.step_px, reach = half_ * step;
+  const double ring = reach + 1.0;  // the outside bands, and the road level read from them
+  const double a = box.angle_deg * CV_PI / 180.0, ca = std::cos(a), sa = std::sin(a);
+  const double half_l = box.length / 2.0, half_w = box.width / 2.0;
+  auto pixel_bounds = [](const OrientedBox& b) {
+    const cv::Rect2d r = axis_aligned_bounds(b);
+    return cv::Rect(cv::Point(static_cast<int>(std::floor(r.x)), static_cast<int>(std::floor(r.y))),
+                    cv::Point(static_cast<int>(std::ceil(r.br().x)) + 1, static_cast<int>(std::ceil(r.br().y)) + 1));
+  };
+  OrientedBox grown = box, outer = box;
+  grown.length += 2.0;
+  grown.width += 2.0;
+  outer.length += 2.0 * ring;
+  outer.width += 2.0 * ring;
+  const cv::Rect window(origin, gray.size());
+  if ((pixel_bounds(grown) & window) != pixel_bounds(grown)) return;  // the box itself is cut off
+  // Beyond the window the outside bands are missing, which counts as road (no darkness).
+  const cv::Rect scan = pixel_bounds(outer) & window;
+
+  struct Pixel {
+    double u, v, grey;
+  };
+  std::vector<Pixel> pixels;
+  std::vector<double> road, body;
+  for (int y = scan.y; y < scan.br().y; ++y) {
+    const uint8_t* row = gray.ptr<uint8_t>(y - origin.y);
+    for (int x = scan.x; x < scan.br().x; ++x) {
+      const double dx = x - box.cx, dy = y - box.cy;
+      const double u = dx * ca + dy * sa, v = -dx * sa + dy * ca;
+      if (std::abs(u) > half_l + ring || std::abs(v) > half_w + ring) continue;
+      const double grey = row[x - origin.x];
+      if (std::abs(u) <= half_l && std::abs(v) <= half_w) body.push_back(grey);
+      else road.push_back(grey);
+      pixels.push_back({u, v, grey});
+    }
+  }
+  if (road.size() < 8 || body.size() < 4) return;
+  auto quantile = [](std::vector<double>& values, double q) {
+    const auto k = static_cast<long>(q * static_cast<double>(values.size() - 1));
+    std::nth_element(values.begin(), values.begin() + k, values.end());
+    return values[static_cast<size_t>(k)];
+  };
+  const double road_level = quantile(road, 0.5);
+  if (!(quantile(body, 0.75) > road_level + options_.bright_margin)) return;  // no bright body to cast against
+
+  const auto bins = static_cast<size_t>(half_);
+  AxisBands along(bins), across(bins);
+  for (const Pixel& p : pixels) {
+    const double darkness = road_level - p.grey;
+    if (std::abs(p.v) <= half_w) along.add(p.u, half_l, darkness, step);
+    if (std::abs(p.u) <= half_l) across.add(p.v, half_w, darkness, step);
+  }
+  along.accumulate();
+  across.accumulate();
+  const int side = 2 * half_ + 1;
+  for (int row = 0; row < side; ++row) {
+    for (int col = 0; col < side; ++col) {
+      const double sx = (col - half_) * step, sy = (row - half_) * step;
+      if (std::hypot(sx, sy) > reach) continue;
+      const double t_along = sx * ca + sy * sa, t_across = -sx * sa + sy * ca;
+      // The body is what is left of the box: at least a pixel each way.
+      if (std::abs(t_along) > box.length - 1.0 || std::abs(t_across) > box.width - 1.0) continue;
+      score_[static_cast<size_t>(row * side + col)] += along.vote(t_along, step) + across.vote(t_across, step);
+    }
+  }
+  votes_ += 1.0;
+}
+
+std::optional<cv::Vec2d> ShadowOffset::offset() const {
+  if (votes_ < options_.min_regions || score_.empty()) return std::nullopt;
+  const auto best = std::max_element(score_.begin(), score_.end());  // the first of equal maxima
+  if (!(*best > 0.0)) return std::nullopt;
+  const int side = 2 * half_ + 1;
+  const auto index = static_cast<int>(best - score_.begin());
+  return cv::Vec2d((index % side - half_) * options_.step_px, (index / side - half_) * options_.step_px);
+}
+
+}  // namespace uavmot::segmentation
