@@ -110,8 +110,8 @@ ShadowOffsetOptions shadow_options(const RegionOptions& r, const SceneInfo& scen
   ShadowOffsetOptions o;
   o.max_offset_px = r.shadow_correction_factor > 0.0 ? scene.metres_to_px(r.shadow_max_m) : 0.0;
   o.bright_margin = r.shadow_bright_margin;
-  o.memory_frames = r.shadow_memory_frames;
   o.min_regions = r.shadow_min_regions;
+  o.agreement_px = r.shadow_agreement_px;
   return o;
 }
 }  // namespace
@@ -245,8 +245,7 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
                            previous_frame_ + 1 == motion.frame_index && motion.quality.valid && is_finite(motion.homography);
   const Homography previous_from_current = shift_check ? motion.homography.inv() : Homography::eye();
   std::vector<ImageCrop> windows;
-  if (previous_stream_ != motion.stream_id) shadow_.reset();
-  shadow_.begin_frame();
+  shadow_.reset();  // this frame's regions vote
 
   std::vector<Region> candidates;
   for (const auto& c : result.clusters) {

@@ -52,9 +52,6 @@ struct AxisBands {
   }
 };
 
-}  // namespace
-
-namespace {
 // At most this many candidates per side of zero: a long search (a fine GSD) takes coarser steps.
 constexpr int kMaxHalf = 48;
 ShadowOffsetOptions bounded(ShadowOffsetOptions o) {
@@ -67,17 +64,12 @@ ShadowOffsetOptions bounded(ShadowOffsetOptions o) {
 ShadowOffset::ShadowOffset(ShadowOffsetOptions options)
     : options_(bounded(options)),
       half_(options_.step_px > 0.0 ? static_cast<int>(std::floor(options_.max_offset_px / options_.step_px)) : 0),
-      score_(static_cast<size_t>((2 * half_ + 1) * (2 * half_ + 1)), 0.0) {}
+      score_(static_cast<size_t>((2 * half_ + 1) * (2 * half_ + 1)), 0.0), odd_(score_.size(), 0.0) {}
 
 void ShadowOffset::reset() {
   std::fill(score_.begin(), score_.end(), 0.0);
-  votes_ = 0.0;
-}
-
-void ShadowOffset::begin_frame() {
-  const double keep = options_.memory_frames > 1.0 ? 1.0 - 1.0 / options_.memory_frames : 0.0;
-  for (double& s : score_) s *= keep;
-  votes_ *= keep;
+  std::fill(odd_.begin(), odd_.end(), 0.0);
+  votes_ = 0;
 }
 
 void ShadowOffset::observe(const cv::Mat& gray, cv::Point origin, const OrientedBox& box) {
@@ -144,19 +136,32 @@ void ShadowOffset::observe(const cv::Mat& gray, cv::Point origin, const Oriented
       const double t_along = sx * ca + sy * sa, t_across = -sx * sa + sy * ca;
       // The body is what is left of the box: at least a pixel each way.
       if (std::abs(t_along) > box.length - 1.0 || std::abs(t_across) > box.width - 1.0) continue;
-      score_[static_cast<size_t>(row * side + col)] += along.vote(t_along, step) + across.vote(t_across, step);
+      const double vote = along.vote(t_along, step) + across.vote(t_across, step);
+      score_[static_cast<size_t>(row * side + col)] += vote;
+      if (votes_ % 2 == 1) odd_[static_cast<size_t>(row * side + col)] += vote;
     }
   }
-  votes_ += 1.0;
+  ++votes_;
 }
 
 std::optional<cv::Vec2d> ShadowOffset::offset() const {
   if (votes_ < options_.min_regions || score_.empty()) return std::nullopt;
-  const auto best = std::max_element(score_.begin(), score_.end());  // the first of equal maxima
-  if (!(*best > 0.0)) return std::nullopt;
   const int side = 2 * half_ + 1;
-  const auto index = static_cast<int>(best - score_.begin());
-  return cv::Vec2d((index % side - half_) * options_.step_px, (index / side - half_) * options_.step_px);
+  // The best candidate of `score` (the first of equal maxima), or nothing when none is above zero.
+  auto best = [&](auto score_at) -> std::optional<cv::Vec2d> {
+    size_t at = 0;
+    for (size_t i = 1; i < score_.size(); ++i) {
+      if (score_at(i) > score_at(at)) at = i;
+    }
+    if (!(score_at(at) > 0.0)) return std::nullopt;
+    const auto index = static_cast<int>(at);
+    return cv::Vec2d((index % side - half_) * options_.step_px, (index / side - half_) * options_.step_px);
+  };
+  const auto all = best([&](size_t i) { return score_[i]; });
+  const auto even = best([&](size_t i) { return score_[i] - odd_[i]; });
+  const auto odd = best([&](size_t i) { return odd_[i]; });
+  if (!all || !even || !odd || cv::norm(*even - *odd) > options_.agreement_px) return std::nullopt;
+  return all;
 }
 
 }  // namespace uavmot::segmentation

@@ -128,13 +128,13 @@ struct RegionOptions {
   // band at the box's far end; docs/segmentation.md, "Shadows") and each gradient region's centre
   // moves back by `shadow_correction_factor` x that offset (0 disables). Offsets are searched up to
   // `shadow_max_m`; a region votes when its body's upper quartile is `shadow_bright_margin` grey
-  // levels above the road around it; votes fade over `shadow_memory_frames` and the offset is used
-  // once `shadow_min_regions` (faded) have voted.
+  // levels above the road around it; the frame's offset is used once `shadow_min_regions` of its
+  // regions have voted and the two halves of the votes find offsets within `shadow_agreement_px`.
   double shadow_correction_factor = 1.0;
   double shadow_max_m = 2.0;
   double shadow_bright_margin = 15.0;
-  double shadow_memory_frames = 50.0;
-  double shadow_min_regions = 30.0;
+  int shadow_min_regions = 10;
+  double shadow_agreement_px = 1.0;
 };
 
 struct SegmentationOptions {

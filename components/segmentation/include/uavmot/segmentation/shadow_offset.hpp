@@ -2,9 +2,8 @@
 // Where the vehicles' shadows lie, learnt from the regions themselves.
 //
 // In sunlight a vehicle's gradient blob is its body and its shadow: the sun is the same for every
-// vehicle, so every box is pulled the same way, half a shadow's length (on the simulator's `paper`
-// scenes about +1.1 / +0.8 px in x / y on every seed, and the whole gap between its position error
-// and issue 18's target; docs/segmentation.md, "Shadows").
+// vehicle, so every box is pulled the same way (on the simulator's `paper` scenes about +1.1 / +0.8
+// px in x / y on every seed, most of its position error; docs/segmentation.md, "Shadows").
 //
 // Model: a box is a body B united with its shadow B + s for one image offset s. For a candidate s
 // the body is the box shrunk by |s| along each axis and moved back by s / 2, and the shadow alone is
@@ -12,9 +11,12 @@
 // the road that band is darker than the road, and the band of the same width just outside the
 // box's other end is road. Each region whose body is clearly brighter than the road around it
 // (a dark car gives no such contrast and would pull s long) scores every candidate s by the band's
-// darkness less the outside band's; the scores of past frames fade with a memory of some frames
-// (the camera turns, the sun does not). The best candidate, once enough regions have voted, is the
-// offset the boxes are corrected by.
+// darkness less the outside band's. The best candidate, once enough regions have voted, is the
+// offset the boxes are corrected by, when the regions agree: the votes are dealt alternately into two
+// halves, whose own best candidates must lie within agreement_px (in an oblique view, where the
+// GSD and so the shadow's length in pixels change across the image, they do not, and a single
+// offset would move the boxes by noise). One frame's regions vote (reset() between frames), so a
+// segmenter keeps no state that a restarted one could not rebuild (docs/launch.md, "Faults").
 
 #include <optional>
 #include <vector>
@@ -30,16 +32,14 @@ struct ShadowOffsetOptions {
   double max_offset_px = 10.0;     // candidates s with |s_x|, |s_y| up to this
   double step_px = 0.25;           // candidate grid spacing
   double bright_margin = 15.0;     // a body's upper quartile this far above the road (grey levels)
-  double memory_frames = 50.0;     // scores fade by 1 - 1 / memory_frames per frame
-  double min_regions = 30.0;       // faded count of voting regions before an estimate is given
+  int min_regions = 10;            // voting regions before an estimate is given
+  double agreement_px = 1.0;       // the two halves of the votes must find offsets this close
 };
 
 class ShadowOffset {
  public:
   explicit ShadowOffset(ShadowOffsetOptions options);
 
-  // Starts a frame: past scores fade.
-  void begin_frame();
   // One region's vote: `gray` (CV_8UC1) is an image window whose top-left pixel is at `origin` in
   // the frame; `box` is the region's box in frame coordinates (before any correction). Regions
   // without a bright body, or too close to the window's border to see the bands, do not vote.
@@ -47,15 +47,17 @@ class ShadowOffset {
   // The shadow's image offset (px), or nothing before enough regions voted or when no candidate
   // scores above zero (no shadows).
   std::optional<cv::Vec2d> offset() const;
+  // Forgets every vote (a new frame).
   void reset();
 
-  double votes() const { return votes_; }
+  int votes() const { return votes_; }
 
  private:
   ShadowOffsetOptions options_;
   int half_;                    // candidates per side: the grid is (2 half_ + 1)^2
   std::vector<double> score_;   // row-major, s = ((col - half_) step, (row - half_) step)
-  double votes_ = 0.0;
+  std::vector<double> odd_;     // the same for every second vote only
+  int votes_ = 0;
 };
 
 }  // namespace uavmot::segmentation
