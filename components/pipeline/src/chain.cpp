@@ -1,5 +1,6 @@
 #include "uavmot/pipeline/chain.hpp"
 
+#include <algorithm>
 #include <chrono>
 
 #include "uavmot/motion/motion_estimator.hpp"
@@ -54,11 +55,26 @@ ChainOutput Chain::segment_and_track(const Frame& frame, MotionEstimate motion) 
   auto start = Clock::now();
   out.segmentation = layers_->segmenter.process(frame, out.motion);
   times_.segmentation_s += seconds_since(start);
+  if (const auto& shadow = layers_->segmenter.last_stats().shadow_offset_px) shadow_offsets_.push_back(*shadow);
   start = Clock::now();
   out.tracks = layers_->tracker.process(out.motion, out.segmentation);
   times_.tracking_s += seconds_since(start);
   ++times_.frames;
   return out;
+}
+
+ShadowSummary Chain::shadow_summary() const {
+  ShadowSummary summary;
+  summary.frames = static_cast<int64_t>(shadow_offsets_.size());
+  if (shadow_offsets_.empty()) return summary;
+  for (int axis = 0; axis < 2; ++axis) {
+    std::vector<double> values;
+    for (const auto& s : shadow_offsets_) values.push_back(s[axis]);
+    const auto middle = values.begin() + static_cast<long>(values.size() / 2);
+    std::nth_element(values.begin(), middle, values.end());
+    summary.median_px[axis] = *middle;
+  }
+  return summary;
 }
 
 }  // namespace uavmot::pipeline

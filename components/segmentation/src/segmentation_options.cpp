@@ -82,6 +82,7 @@ void validate(const SegmentationOptions& o) {
   require(in_range(r.shadow_bright_margin, 0.0, 255.0), "shadow_bright_margin", "in [0, 255]");
   require(r.shadow_min_regions >= 1 && r.shadow_min_regions <= 100000, "shadow_min_regions", "in [1, 100000]");
   require(in_range(r.shadow_agreement_px, 0.0, 100.0), "shadow_agreement_px", "in [0, 100]");
+  require(in_range(r.shadow_min_darkness, 0.0, 255.0), "shadow_min_darkness", "in [0, 255]");
 }
 
 SegmentationOptions load_segmentation_options(const ConfigNode& node) {
@@ -93,7 +94,7 @@ SegmentationOptions load_segmentation_options(const ConfigNode& node) {
                     "max_length_factor", "min_width_factor", "max_width_factor", "min_supporting_features",
                     "support_margin_px", "fallback_to_cluster_box", "duplicate_overlap", "shift_check_ratio",
                     "shift_check_min_speed_px", "shift_check_search_px", "shadow_correction_factor", "shadow_max_m",
-                    "shadow_bright_margin", "shadow_min_regions", "shadow_agreement_px"});
+                    "shadow_bright_margin", "shadow_min_regions", "shadow_agreement_px", "shadow_min_darkness"});
   std::string method = to_string(o.method);
   node.read_choice("method", method, segmentation_method_names());
   o.method = parse_segmentation_method(method);
@@ -153,6 +154,7 @@ SegmentationOptions load_segmentation_options(const ConfigNode& node) {
   node.read("shadow_bright_margin", r.shadow_bright_margin, 0.0, 255.0);
   node.read("shadow_min_regions", r.shadow_min_regions, 1, 100000);
   node.read("shadow_agreement_px", r.shadow_agreement_px, 0.0, 100.0);
+  node.read("shadow_min_darkness", r.shadow_min_darkness, 0.0, 255.0);
   validate(o);
   return o;
 }

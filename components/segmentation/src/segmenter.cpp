@@ -112,6 +112,7 @@ ShadowOffsetOptions shadow_options(const RegionOptions& r, const SceneInfo& scen
   o.bright_margin = r.shadow_bright_margin;
   o.min_regions = r.shadow_min_regions;
   o.agreement_px = r.shadow_agreement_px;
+  o.min_darkness = r.shadow_min_darkness;
   return o;
 }
 }  // namespace

@@ -64,12 +64,13 @@ TEST(SegmentationOptions, BadValuesNameTheField) {
 TEST(SegmentationOptions, ReadsTheShadowCorrection) {
   const SegmentationOptions o = load(
       "shadow_correction_factor: 0.5\nshadow_max_m: 3\nshadow_bright_margin: 20\nshadow_min_regions: 4\n"
-      "shadow_agreement_px: 0.5\n");
+      "shadow_agreement_px: 0.5\nshadow_min_darkness: 5\n");
   EXPECT_DOUBLE_EQ(o.regions.shadow_correction_factor, 0.5);
   EXPECT_DOUBLE_EQ(o.regions.shadow_max_m, 3.0);
   EXPECT_DOUBLE_EQ(o.regions.shadow_bright_margin, 20.0);
   EXPECT_EQ(o.regions.shadow_min_regions, 4);
   EXPECT_DOUBLE_EQ(o.regions.shadow_agreement_px, 0.5);
+  EXPECT_DOUBLE_EQ(o.regions.shadow_min_darkness, 5.0);
   EXPECT_DOUBLE_EQ(load("{}").regions.shadow_correction_factor, 1.0);  // on by default
 }
 

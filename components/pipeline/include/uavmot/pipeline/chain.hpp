@@ -4,6 +4,9 @@
 
 #include <memory>
 #include <string>
+#include <vector>
+
+#include <opencv2/core/matx.hpp>
 
 #include "uavmot/config/chain_config.hpp"
 #include "uavmot/core/chain_types.hpp"
@@ -41,6 +44,13 @@ struct StageTimes {
   double motion_s = 0.0, segmentation_s = 0.0, tracking_s = 0.0;
 };
 
+// The vehicles' shadow offset the segmentation took out of its boxes (docs/segmentation.md,
+// "Shadows"): in how many frames, and the median offset over them (image px).
+struct ShadowSummary {
+  int64_t frames = 0;
+  cv::Vec2d median_px{0.0, 0.0};
+};
+
 class Chain {
  public:
   explicit Chain(const ChainOptions& options);
@@ -60,11 +70,13 @@ class Chain {
 
   // Read after the threads calling the halves have finished.
   const StageTimes& stage_times() const { return times_; }
+  ShadowSummary shadow_summary() const;
 
  private:
   struct Layers;
   std::unique_ptr<Layers> layers_;
   StageTimes times_;
+  std::vector<cv::Vec2d> shadow_offsets_;  // of the frames whose boxes were corrected
 };
 
 }  // namespace uavmot::pipeline

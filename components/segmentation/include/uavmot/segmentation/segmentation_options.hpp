@@ -129,12 +129,14 @@ struct RegionOptions {
   // moves back by `shadow_correction_factor` x that offset (0 disables). Offsets are searched up to
   // `shadow_max_m`; a region votes when its body's upper quartile is `shadow_bright_margin` grey
   // levels above the road around it; the frame's offset is used once `shadow_min_regions` of its
-  // regions have voted and the two halves of the votes find offsets within `shadow_agreement_px`.
+  // regions have voted, the two halves of the votes find offsets within `shadow_agreement_px` and the
+  // shadow band is on average more than `shadow_min_darkness` grey levels darker than the road.
   double shadow_correction_factor = 1.0;
   double shadow_max_m = 2.0;
   double shadow_bright_margin = 15.0;
   int shadow_min_regions = 10;
   double shadow_agreement_px = 1.0;
+  double shadow_min_darkness = 0.0;
 };
 
 struct SegmentationOptions {

@@ -34,6 +34,7 @@ struct ShadowOffsetOptions {
   double bright_margin = 15.0;     // a body's upper quartile this far above the road (grey levels)
   int min_regions = 10;            // voting regions before an estimate is given
   double agreement_px = 1.0;       // the two halves of the votes must find offsets this close
+  double min_darkness = 0.0;       // the shadow bands' mean darkness must exceed this (grey levels)
 };
 
 class ShadowOffset {
@@ -57,6 +58,7 @@ class ShadowOffset {
   int half_;                    // candidates per side: the grid is (2 half_ + 1)^2
   std::vector<double> score_;   // row-major, s = ((col - half_) step, (row - half_) step)
   std::vector<double> odd_;     // the same for every second vote only
+  std::vector<double> band_darkness_, band_pixels_;  // each candidate's shadow bands alone
   int votes_ = 0;
 };
 
