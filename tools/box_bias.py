@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Signed position error of a simulated run's boxes (docs/tracking.md, "Where the position error comes from").
+"""Signed position error of a simulated run's boxes (docs/tracking.md, "Vehicle shadows").
 
 `uavmot eval` reports the mean absolute centre error (e_x, e_y); this splits it into a bias that
 every box shares and the scatter around it. For each confirmed box of tracks_obb.csv that belongs to

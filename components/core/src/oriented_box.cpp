@@ -104,6 +104,12 @@ cv::Rect2d axis_aligned_bounds(const OrientedBox& box) {
   return {min_x, min_y, max_x - min_x, max_y - min_y};
 }
 
+cv::Rect pixel_bounds(const OrientedBox& box) {
+  const cv::Rect2d r = axis_aligned_bounds(box);
+  return cv::Rect(cv::Point(static_cast<int>(std::floor(r.x)), static_cast<int>(std::floor(r.y))),
+                  cv::Point(static_cast<int>(std::ceil(r.br().x)) + 1, static_cast<int>(std::ceil(r.br().y)) + 1));
+}
+
 double box_area(const OrientedBox& box) { return std::max(0.0, box.width) * std::max(0.0, box.length); }
 
 double intersection_area(const OrientedBox& a, const OrientedBox& b) {

@@ -36,6 +36,14 @@ TEST(OrientedBox, AxisAlignedBoundsOfRotatedBox) {
   EXPECT_NEAR(r.height, 10, 1e-9);
 }
 
+TEST(OrientedBox, PixelBoundsHoldEveryPixelTheBoundsReach) {
+  // Bounds x in [98.6, 101.4], y in [44.7, 55.3]: pixels 98..102 and 44..56.
+  const OrientedBox box{100, 50, 2.8, 10.6, 90};
+  EXPECT_EQ(pixel_bounds(box), cv::Rect(98, 44, 5, 13));
+  // Whole-pixel bounds keep one pixel to spare on the right and below.
+  EXPECT_EQ(pixel_bounds(OrientedBox{10, 10, 4, 6, 0}), cv::Rect(7, 8, 7, 5));
+}
+
 TEST(OrientedBox, IntersectionAreaMatchesOpenCv) {
   const OrientedBox a{0, 0, 4, 10, 0};
   const OrientedBox b{3, 1, 4, 10, 30};

@@ -45,27 +45,19 @@ struct AxisBands {
     }
   }
 
-  // The vote of a shadow offset t along this axis (k bins of width): its band inside the box at the
-  // far end of t, less the band outside the opposite end.
-  double vote(double t, double step) const {
+  // What an offset t along this axis makes of the box's ends: the band inside the box at the far end
+  // of t (its darkness and pixels) and the vote, that band's darkness less the band outside the
+  // opposite end's. Bands are |t| rounded to whole bins wide; t of less than half a bin has none.
+  struct Band {
+    double vote = 0.0, darkness = 0.0, pixels = 0.0;
+  };
+  Band band(double t, double step) const {
     const auto k = static_cast<size_t>(std::lround(std::abs(t) / step));
-    if (k == 0) return 0.0;
+    if (k == 0) return {};
     const size_t i = std::min(k, plus.inside.size()) - 1;
-    return t > 0.0 ? plus.inside[i] - minus.outside[i] : minus.inside[i] - plus.outside[i];
-  }
-
-  // That inside band alone: its darkness and its pixels.
-  double band_darkness(double t, double step) const {
-    const auto k = static_cast<size_t>(std::lround(std::abs(t) / step));
-    if (k == 0) return 0.0;
-    const size_t i = std::min(k, plus.inside.size()) - 1;
-    return t > 0.0 ? plus.inside[i] : minus.inside[i];
-  }
-  double band_pixels(double t, double step) const {
-    const auto k = static_cast<size_t>(std::lround(std::abs(t) / step));
-    if (k == 0) return 0.0;
-    const size_t i = std::min(k, plus.inside.size()) - 1;
-    return t > 0.0 ? plus.inside_pixels[i] : minus.inside_pixels[i];
+    const EdgeBands& far = t > 0.0 ? plus : minus;
+    const EdgeBands& near = t > 0.0 ? minus : plus;
+    return {far.inside[i] - near.outside[i], far.inside[i], far.inside_pixels[i]};
   }
 };
 
@@ -98,11 +90,6 @@ void ShadowOffset::observe(const cv::Mat& gray, cv::Point origin, const Oriented
   const double ring = reach + 1.0;  // the outside bands, and the road level read from them
   const double a = box.angle_deg * CV_PI / 180.0, ca = std::cos(a), sa = std::sin(a);
   const double half_l = box.length / 2.0, half_w = box.width / 2.0;
-  auto pixel_bounds = [](const OrientedBox& b) {
-    const cv::Rect2d r = axis_aligned_bounds(b);
-    return cv::Rect(cv::Point(static_cast<int>(std::floor(r.x)), static_cast<int>(std::floor(r.y))),
-                    cv::Point(static_cast<int>(std::ceil(r.br().x)) + 1, static_cast<int>(std::ceil(r.br().y)) + 1));
-  };
   OrientedBox grown = box, outer = box;
   grown.length += 2.0;
   grown.width += 2.0;
@@ -156,12 +143,13 @@ void ShadowOffset::observe(const cv::Mat& gray, cv::Point origin, const Oriented
       const double t_along = sx * ca + sy * sa, t_across = -sx * sa + sy * ca;
       // The body is what is left of the box: at least a pixel each way.
       if (std::abs(t_along) > box.length - 1.0 || std::abs(t_across) > box.width - 1.0) continue;
-      const double vote = along.vote(t_along, step) + across.vote(t_across, step);
+      const AxisBands::Band a_band = along.band(t_along, step), c_band = across.band(t_across, step);
+      const double vote = a_band.vote + c_band.vote;
       const auto cell = static_cast<size_t>(row * side + col);
       score_[cell] += vote;
       if (votes_ % 2 == 1) odd_[cell] += vote;
-      band_darkness_[cell] += along.band_darkness(t_along, step) + across.band_darkness(t_across, step);
-      band_pixels_[cell] += along.band_pixels(t_along, step) + across.band_pixels(t_across, step);
+      band_darkness_[cell] += a_band.darkness + c_band.darkness;
+      band_pixels_[cell] += a_band.pixels + c_band.pixels;
     }
   }
   ++votes_;
@@ -169,17 +157,18 @@ void ShadowOffset::observe(const cv::Mat& gray, cv::Point origin, const Oriented
 
 std::optional<cv::Vec2d> ShadowOffset::offset() const {
   if (votes_ < options_.min_regions || score_.empty()) return std::nullopt;
-  const int side = 2 * half_ + 1;
-  // The best candidate of `score` (the first of equal maxima), or nothing when none is above zero.
-  size_t best_cell = 0;
-  auto best = [&](auto score_at) -> std::optional<cv::Vec2d> {
+  // The cell of the best candidate by `score_at` (the first of equal maxima), or nothing when none
+  // scores above zero.
+  auto best = [&](auto score_at) -> std::optional<size_t> {
     size_t at = 0;
     for (size_t i = 1; i < score_.size(); ++i) {
       if (score_at(i) > score_at(at)) at = i;
     }
-    if (!(score_at(at) > 0.0)) return std::nullopt;
-    best_cell = at;
-    const auto index = static_cast<int>(at);
+    return score_at(at) > 0.0 ? std::optional<size_t>(at) : std::nullopt;
+  };
+  const int side = 2 * half_ + 1;
+  auto offset_of = [&](size_t cell) {
+    const auto index = static_cast<int>(cell);
     return cv::Vec2d((index % side - half_) * options_.step_px, (index / side - half_) * options_.step_px);
   };
   const auto all = best([&](size_t i) { return score_[i]; });
@@ -187,14 +176,15 @@ std::optional<cv::Vec2d> ShadowOffset::offset() const {
   // more than min_darkness grey levels. The vote also counts the band outside the other end, which a
   // bright body's blurred edge makes brighter than the road with no shadow at all (scenes rendered
   // without shadows: their bands averaged 12 grey levels brighter than the road, `paper`'s 4 darker).
-  if (!all || !(band_darkness_[best_cell] > options_.min_darkness * band_pixels_[best_cell])) return std::nullopt;
+  if (!all || !(band_darkness_[*all] > options_.min_darkness * band_pixels_[*all])) return std::nullopt;
   const auto even = best([&](size_t i) { return score_[i] - odd_[i]; });
   const auto odd = best([&](size_t i) { return odd_[i]; });
-  if (!all || !even || !odd || cv::norm(*even - *odd) > options_.agreement_px) return std::nullopt;
+  if (!even || !odd || cv::norm(offset_of(*even) - offset_of(*odd)) > options_.agreement_px) return std::nullopt;
   // An offset of a step or two is what noise gives where there are no shadows (scenes rendered
   // without them: 0.25-0.35 px in a fifth of the frames), not a shadow to correct for.
-  if (cv::norm(*all) < 2.0 * options_.step_px) return std::nullopt;
-  return all;
+  const cv::Vec2d offset = offset_of(*all);
+  if (cv::norm(offset) < 2.0 * options_.step_px) return std::nullopt;
+  return offset;
 }
 
 }  // namespace uavmot::segmentation

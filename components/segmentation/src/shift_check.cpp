@@ -39,10 +39,7 @@ std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const Orient
                           std::isfinite(extent.height))) {
     return std::nullopt;
   }
-  const cv::Rect bounds = cv::Rect(cv::Point(static_cast<int>(std::floor(extent.x)), static_cast<int>(std::floor(extent.y))),
-                                   cv::Point(static_cast<int>(std::ceil(extent.br().x)) + 1,
-                                             static_cast<int>(std::ceil(extent.br().y)) + 1)) &
-                          current.roi;
+  const cv::Rect bounds = pixel_bounds(box) & current.roi;
   if (bounds.empty()) return std::nullopt;
   // The previous window that holds most of the region at rest and moved (the window of the same
   // cluster, usually; a region at the edge of a cluster's window, as static texture beside a car

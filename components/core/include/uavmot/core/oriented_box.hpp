@@ -34,6 +34,9 @@ std::array<cv::Point2d, 4> box_corners(const OrientedBox& box);
 
 // Axis-aligned box around the oriented box: x = left, y = top (continuous).
 cv::Rect2d axis_aligned_bounds(const OrientedBox& box);
+// The whole pixels (centres at integer coordinates) that axis_aligned_bounds() reaches: from the
+// floor of its left / top to the ceiling of its right / bottom, both included. `box` must be finite.
+cv::Rect pixel_bounds(const OrientedBox& box);
 
 double box_area(const OrientedBox& box);
 // Area of the intersection of two oriented boxes (exact polygon clipping).
