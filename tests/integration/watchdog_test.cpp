@@ -4,9 +4,13 @@
 // one; the respawned tracker restores its state and the lossless run ends with the files of an
 // undisturbed run. The components it held back (segmentation, motion, source waiting for its
 // acknowledgements) keep reporting while they wait, so the watchdog leaves them alone.
+// A component stopped as soon as it is started, before its first report, hangs too: without the
+// watchdog's start-up rule it held the source waiting for its reader until the source gave up (4 x
+// 30 s) and the launch failed.
 
 #include <signal.h>
 
+#include <cstdio>
 #include <thread>
 
 #include <gtest/gtest.h>
@@ -48,6 +52,38 @@ TEST(Watchdog, StoppedTrackerIsKilledAndRespawnedAndTheResultsAreUnchanged) {
   for (const char* name : {"source", "motion", "segmentation", "sink"}) {
     EXPECT_EQ(log.find(std::string(name) + " hung"), std::string::npos) << name << " was taken for hung\n" << log;
   }
+  for (const char* file : {"tracks.txt", "tracks_obb.csv", "regions.txt", "homographies.txt"}) {
+    EXPECT_EQ(testing::read_file(root + "/stopped/" + file), testing::read_file(root + "/undisturbed/" + file)) << file;
+  }
+}
+
+TEST(Watchdog, AComponentStoppedBeforeItsFirstReportIsKilledAndRespawned) {
+  const std::string root = testing::fresh_dir("watchdog_start");
+  ASSERT_NO_FATAL_FAILURE(testing::run_undisturbed_paper(root, 60, {"domain=187", "hang_timeout=7"}));
+  ChildProcess launch(testing::local_launch(root + "/paper", root + "/stopped", {"domain=188", "hang_timeout=7"}),
+                      root + "/stopped.log");
+  int stopped = -1;
+  const auto started_by = std::chrono::steady_clock::now() + std::chrono::seconds(30);
+  while (stopped <= 0 && std::chrono::steady_clock::now() < started_by) {
+    stopped = testing::launched_pid(launch.log(), "segmentation");
+    if (stopped <= 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
+  ASSERT_GT(stopped, 0) << launch.log();
+  ASSERT_EQ(::kill(stopped, SIGSTOP), 0);
+  const auto code = launch.wait(std::chrono::seconds(120));
+  if (!code) {
+    ::kill(stopped, SIGKILL);
+    launch.signal(SIGKILL);
+  }
+  ASSERT_TRUE(code.has_value()) << "the launch did not end\n" << launch.log();
+  ASSERT_EQ(*code, 0) << launch.log();
+  const std::string log = launch.log();
+  // Whichever came first, its start or its first report (the stop lands within a few ms of the
+  // start, so nearly always before the report), the watchdog noticed it.
+  EXPECT_NE(log.find("segmentation (pid " + std::to_string(stopped) + ") hangs: no health report"), std::string::npos) << log;
+  EXPECT_NE(log.find("segmentation hung, killed by signal 9"), std::string::npos) << log;
+  std::printf("stopped before its first report: %s\n",
+              log.find("first health report of segmentation (pid " + std::to_string(stopped) + ")") == std::string::npos ? "yes" : "no");
   for (const char* file : {"tracks.txt", "tracks_obb.csv", "regions.txt", "homographies.txt"}) {
     EXPECT_EQ(testing::read_file(root + "/stopped/" + file), testing::read_file(root + "/undisturbed/" + file)) << file;
   }

@@ -96,5 +96,33 @@ TEST(Participant, AResumingReaderGetsTheChainHistoryAVolatileOneDoesNot) {
   EXPECT_FALSE(plain->take(sample)) << "a volatile reader got history";
 }
 
+// A respawned segmentation (and motion with saved state) reads frames with FramesResume: it must get
+// the writer's last 16 frames again, enough to hold the last frame its predecessor published (the
+// shift check of the next frame needs it; bringup/qos/uavmot_qos.xml has the arithmetic).
+TEST(Participant, AResumingFramesReaderGetsTheWritersLast16Frames) {
+  Participant writer_side(options("frames-writer"));
+  Participant reader_side(options("frames-readers"));
+  auto writer = writer_side.make_writer<msg::FramePubSubType>(kFramesTopic, TopicClass::Frames);
+  constexpr int kFrames = 20;
+  for (int i = 1; i <= kFrames; ++i) {
+    auto sample = to_msg(Frame{"uav1", i, i * 40'000'000LL, cv::Mat(48, 64, CV_8UC1, cv::Scalar(i))});
+    ASSERT_TRUE(writer->write(sample));
+  }
+  auto plain = reader_side.make_reader<msg::FramePubSubType>(kFramesTopic, TopicClass::Frames);
+  auto resuming = reader_side.make_reader<msg::FramePubSubType>(kFramesTopic, TopicClass::FramesResume);
+  ASSERT_TRUE(writer->wait_for_matched(2, std::chrono::seconds(10)));
+  std::vector<int64_t> resumed;
+  msg::Frame sample;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (static_cast<int>(resumed.size()) < 16 && std::chrono::steady_clock::now() < deadline) {
+    resuming->wait_for_data(std::chrono::milliseconds(100));
+    while (resuming->take(sample)) resumed.push_back(sample.frame_index());
+  }
+  std::vector<int64_t> expected;
+  for (int i = kFrames - 15; i <= kFrames; ++i) expected.push_back(i);
+  EXPECT_EQ(resumed, expected);
+  EXPECT_FALSE(plain->take(sample)) << "a volatile reader got history";
+}
+
 }  // namespace
 }  // namespace uavmot::dds

@@ -84,4 +84,6 @@ std::optional<double> DdsHealthMonitor::silent_s(pid_t pid, const std::string& c
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - it->second.arrived).count();
 }
 
+bool DdsHealthMonitor::reported(pid_t pid, const std::string& component) const { return last_.count({pid, component}) > 0; }
+
 }  // namespace uavmot::launch

@@ -33,6 +33,7 @@ struct Child {
   std::string partial_line;
   int respawns = 0;
   std::optional<Clock::time_point> respawn_at;
+  Clock::time_point started_at;
   bool finished = false;
   bool hung = false;  // the watchdog killed it
 };
@@ -106,6 +107,7 @@ class Runner {
     c.pid = pid;
     c.out_fd = fds[0];
     c.respawn_at.reset();
+    c.started_at = Clock::now();
     c.hung = false;
     std::string cmd;
     for (size_t i = 1; i < c.argv.size(); ++i) cmd += " " + c.argv[i];
@@ -141,17 +143,27 @@ class Runner {
 
   // A process that reported on uavmot/health and then fell silent for its hang_timeout while still
   // alive hangs (its own writers' waits keep the reports going, so backpressure is not silence).
+  // So does one that has not reported within hang_timeout of its start (every watched component
+  // reports once its participant is up, well under a second here): stuck before its first report,
+  // it would otherwise hold its upstream waiting for a reader until that gives up and fails the launch.
   // SIGKILL works on a stopped process too; reap() then respawns it like any crash.
   void watch_health() {
     if (!health_ || stop_ || shutdown_requested()) return;
     health_->poll();
     for (auto& c : children_) {
       if (c.pid <= 0 || c.hung || c.spec->hang_timeout_s <= 0.0) continue;
-      const auto silent = health_->silent_s(c.pid, c.spec->command);
-      if (!silent || *silent < c.spec->hang_timeout_s) continue;
-      char line[160];
-      std::snprintf(line, sizeof(line), "%s (pid %d) hangs: no health report for %.1f s (hang_timeout %.1f s); killing it",
-                    c.spec->name.c_str(), static_cast<int>(c.pid), *silent, c.spec->hang_timeout_s);
+      char line[200];
+      if (const auto silent = health_->silent_s(c.pid, c.spec->command)) {
+        if (*silent < c.spec->hang_timeout_s) continue;
+        std::snprintf(line, sizeof(line), "%s (pid %d) hangs: no health report for %.1f s (hang_timeout %.1f s); killing it",
+                      c.spec->name.c_str(), static_cast<int>(c.pid), *silent, c.spec->hang_timeout_s);
+      } else {
+        const double since_start = std::chrono::duration<double>(Clock::now() - c.started_at).count();
+        if (health_->reported(c.pid, c.spec->command) || since_start < c.spec->hang_timeout_s) continue;
+        std::snprintf(line, sizeof(line),
+                      "%s (pid %d) hangs: no health report in the %.1f s since its start (hang_timeout %.1f s); killing it",
+                      c.spec->name.c_str(), static_cast<int>(c.pid), since_start, c.spec->hang_timeout_s);
+      }
       say("launch", line);
       c.hung = true;
       ::kill(c.pid, SIGKILL);

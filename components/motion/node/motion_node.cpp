@@ -156,7 +156,7 @@ int motion_main(int argc, char** argv) {
       };
       using Node = dds::SingleInputNode<msg::FramePubSubType, msg::MotionEstimatePubSubType, Frame>;
       // With saved state, also take the frames the source published while this process was down
-      // (the writer's last 8, transient-local): the first of them the state does not hold is next.
+      // (the writer's last 16, transient-local): the first of them the state does not hold is next.
       const auto frames_class = state_dir.empty() ? dds::TopicClass::Frames : dds::TopicClass::FramesResume;
       Node single(participant,
                   {"motion", dds::kFramesTopic, dds::kMotionTopic, frames_class, streams, node.wait_subscribers, upstream_timeout_s},

@@ -25,7 +25,7 @@ const char* to_string(DeliveryMode mode);
 // ChainResume: a chain topic read by a component that restores its state after a restart (the
 // tracker): in lossless mode its reader also gets the writer's recent history, so the samples
 // published while it was down are not lost to it. Writers are the same as for Chain.
-// FramesResume: the same for frames (the writer's last 8), for a respawned segmentation and a motion
+// FramesResume: the same for frames (the writer's last 16), for a respawned segmentation and a motion
 // that restores its saved state.
 enum class TopicClass { Frames, Chain, ChainResume, Downlink, Preview, Health, State, FramesResume };
 

@@ -31,6 +31,7 @@ class DdsHealthMonitor final : public HealthMonitor {
 
   void poll() override;
   std::optional<double> silent_s(pid_t pid, const std::string& component) const override;
+  bool reported(pid_t pid, const std::string& component) const override;
 
  private:
   struct Endpoint {

@@ -27,6 +27,8 @@ class HealthMonitor {
   // Seconds since the last report of `component` with `pid` arrived; nullopt before its first
   // report, and after it reported that it finished or failed (it stops reporting on purpose then).
   virtual std::optional<double> silent_s(pid_t pid, const std::string& component) const = 0;
+  // Whether `component` with `pid` has reported at all (a process that never does hangs too).
+  virtual bool reported(pid_t pid, const std::string& component) const = 0;
 };
 
 struct SupervisorOptions {
