@@ -84,8 +84,9 @@ struct TrackerOptions {
   // piece_max_speed_difference_mps, one is behind the other along the direction of travel (centres
   // at most piece_max_lateral_m apart across it), the gap between their boxes is at most
   // piece_max_gap_m, and each and both together fit the largest object above (piece_merger.hpp).
-  // piece_max_gap_m = 0 disables.
-  double piece_max_gap_m = 1.5;
+  // piece_max_gap_m = 0 disables. 2 m: a truck's uniform trailer roof leaves the segmentation blobs
+  // at its ends up to 1.9 m apart (docs/tracking.md, step 6).
+  double piece_max_gap_m = 2.0;
   double piece_min_speed_mps = 1.0;
   double piece_max_speed_difference_mps = 1.0;
   double piece_max_lateral_m = 0.9;
