@@ -55,7 +55,10 @@ ChainOutput Chain::segment_and_track(const Frame& frame, MotionEstimate motion) 
   auto start = Clock::now();
   out.segmentation = layers_->segmenter.process(frame, out.motion);
   times_.segmentation_s += seconds_since(start);
-  if (const auto& shadow = layers_->segmenter.last_stats().shadow_offset_px) shadow_offsets_.push_back(*shadow);
+  if (const auto& shadow = layers_->segmenter.last_stats().shadow_offset_px) {
+    ++shadow_frames_;
+    for (int axis = 0; axis < 2; ++axis) ++shadow_offset_counts_[axis][(*shadow)[axis]];
+  }
   start = Clock::now();
   out.tracks = layers_->tracker.process(out.motion, out.segmentation);
   times_.tracking_s += seconds_since(start);
@@ -65,14 +68,17 @@ ChainOutput Chain::segment_and_track(const Frame& frame, MotionEstimate motion) 
 
 ShadowSummary Chain::shadow_summary() const {
   ShadowSummary summary;
-  summary.frames = static_cast<int64_t>(shadow_offsets_.size());
-  if (shadow_offsets_.empty()) return summary;
+  summary.frames = shadow_frames_;
+  // The value at index frames / 2 of the sorted offsets (the upper median of an even count).
   for (int axis = 0; axis < 2; ++axis) {
-    std::vector<double> values;
-    for (const auto& s : shadow_offsets_) values.push_back(s[axis]);
-    const auto middle = values.begin() + static_cast<long>(values.size() / 2);
-    std::nth_element(values.begin(), middle, values.end());
-    summary.median_px[axis] = *middle;
+    int64_t before = 0;
+    for (const auto& [offset, count] : shadow_offset_counts_[axis]) {
+      if (before + count > shadow_frames_ / 2) {
+        summary.median_px[axis] = offset;
+        break;
+      }
+      before += count;
+    }
   }
   return summary;
 }

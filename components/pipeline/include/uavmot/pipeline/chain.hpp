@@ -2,6 +2,8 @@
 // The whole chain in one process: motion -> segmentation -> tracking, called in the same order
 // and with the same data as the distributed chain, so both give the same tracks (paper Fig. 1).
 
+#include <array>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
@@ -76,7 +78,10 @@ class Chain {
   struct Layers;
   std::unique_ptr<Layers> layers_;
   StageTimes times_;
-  std::vector<cv::Vec2d> shadow_offsets_;  // of the frames whose boxes were corrected
+  // How often each shadow offset (per axis) was taken out of a frame's boxes: the offsets lie on the
+  // estimator's candidate grid, so a run of any length keeps at most a few hundred counts.
+  std::array<std::map<double, int64_t>, 2> shadow_offset_counts_;
+  int64_t shadow_frames_ = 0;
 };
 
 }  // namespace uavmot::pipeline
