@@ -26,6 +26,18 @@ DdsOptions options(const std::string& name, const std::string& profiles_file = "
   return o;
 }
 
+// The frame indices `reader` takes into `sample` until it holds `count` of them (or 10 s pass).
+template <class Reader, class Sample>
+std::vector<int64_t> indices_taken(Reader& reader, Sample& sample, size_t count) {
+  std::vector<int64_t> indices;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  while (indices.size() < count && std::chrono::steady_clock::now() < deadline) {
+    reader.wait_for_data(std::chrono::milliseconds(100));
+    while (reader.take(sample)) indices.push_back(sample.frame_index());
+  }
+  return indices;
+}
+
 TEST(Participant, MissingProfilesOrProfileNamesAreInputErrors) {
   EXPECT_THROW(Participant(options("x", "/nonexistent.xml")), InputError);
   EXPECT_THROW(Participant(options("x", "", "no_such_profile")), InputError);
@@ -85,14 +97,8 @@ TEST(Participant, AResumingReaderGetsTheChainHistoryAVolatileOneDoesNot) {
   auto plain = reader_side.make_reader<msg::TrackListPubSubType>(kTracksTopic, TopicClass::Chain);
   auto resuming = reader_side.make_reader<msg::TrackListPubSubType>(kTracksTopic, TopicClass::ChainResume);
   ASSERT_TRUE(writer->wait_for_matched(2, std::chrono::seconds(10)));
-  std::vector<int64_t> resumed;
   msg::TrackList sample;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (static_cast<int>(resumed.size()) < kSamples && std::chrono::steady_clock::now() < deadline) {
-    resuming->wait_for_data(std::chrono::milliseconds(100));
-    while (resuming->take(sample)) resumed.push_back(sample.frame_index());
-  }
-  EXPECT_EQ(resumed, (std::vector<int64_t>{1, 2, 3, 4, 5}));
+  EXPECT_EQ(indices_taken(*resuming, sample, kSamples), (std::vector<int64_t>{1, 2, 3, 4, 5}));
   EXPECT_FALSE(plain->take(sample)) << "a volatile reader got history";
 }
 
@@ -111,16 +117,10 @@ TEST(Participant, AResumingFramesReaderGetsTheWritersLast16Frames) {
   auto plain = reader_side.make_reader<msg::FramePubSubType>(kFramesTopic, TopicClass::Frames);
   auto resuming = reader_side.make_reader<msg::FramePubSubType>(kFramesTopic, TopicClass::FramesResume);
   ASSERT_TRUE(writer->wait_for_matched(2, std::chrono::seconds(10)));
-  std::vector<int64_t> resumed;
   msg::Frame sample;
-  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
-  while (static_cast<int>(resumed.size()) < 16 && std::chrono::steady_clock::now() < deadline) {
-    resuming->wait_for_data(std::chrono::milliseconds(100));
-    while (resuming->take(sample)) resumed.push_back(sample.frame_index());
-  }
   std::vector<int64_t> expected;
   for (int i = kFrames - 15; i <= kFrames; ++i) expected.push_back(i);
-  EXPECT_EQ(resumed, expected);
+  EXPECT_EQ(indices_taken(*resuming, sample, expected.size()), expected);
   EXPECT_FALSE(plain->take(sample)) << "a volatile reader got history";
 }
 

@@ -1,6 +1,5 @@
 #include "uavmot/pipeline/chain.hpp"
 
-#include <algorithm>
 #include <chrono>
 
 #include "uavmot/motion/motion_estimator.hpp"
