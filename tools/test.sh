@@ -43,6 +43,8 @@ tests() {
   unset GTEST_OUTPUT
   python3 tools/check_skips.py tools/expected_skips.txt "$reports/gtest" "$reports/ctest_parallel.xml" \
     "$reports/ctest_serial.xml" || failed=1
+  # Last, so that the tail CI keeps says why each failed test failed, not only which.
+  python3 tools/report_failures.py "$reports/gtest" "$reports/ctest_parallel.xml" "$reports/ctest_serial.xml" || true
   return "$failed"
 }
 
