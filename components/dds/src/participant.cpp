@@ -9,6 +9,7 @@
 #include <set>
 
 #include <fastdds/dds/domain/DomainParticipantFactory.hpp>
+#include <fastdds/dds/log/Log.hpp>
 #include <fastdds/rtps/flowcontrol/FlowControllerDescriptor.hpp>
 #include <fastdds/rtps/transport/shared_mem/SharedMemTransportDescriptor.h>
 #include <fastrtps/utils/IPLocator.h>
@@ -32,6 +33,21 @@ fs::path executable_dir() {
   std::error_code ec;
   const fs::path exe = fs::read_symlink("/proc/self/exe", ec);
   return ec ? fs::path() : exe.parent_path();
+}
+
+// Fast DDS prints only its errors; UAVMOT_DDS_LOG=warning (or info) shows what it otherwise keeps
+// to itself, e.g. a shared-memory port found unhealthy or a security handshake that failed.
+void apply_dds_log_level_once() {
+  static std::once_flag once;
+  std::call_once(once, [] {
+    const char* env = std::getenv("UAVMOT_DDS_LOG");
+    if (!env || !*env) return;
+    using eprosima::fastdds::dds::Log;
+    const std::map<std::string, Log::Kind> levels = {{"error", Log::Kind::Error}, {"warning", Log::Kind::Warning}, {"info", Log::Kind::Info}};
+    const auto level = levels.find(env);
+    if (level == levels.end()) throw InputError(std::string("UAVMOT_DDS_LOG='") + env + "': expected error, warning or info");
+    Log::SetVerbosity(level->second);
+  });
 }
 
 void load_profiles_once(const std::string& file) {
@@ -162,6 +178,7 @@ std::string default_profiles_file() {
 
 Participant::Participant(DdsOptions options) : options_(std::move(options)) {
   if (options_.profiles_file.empty()) options_.profiles_file = default_profiles_file();
+  apply_dds_log_level_once();
   load_profiles_once(options_.profiles_file);
   auto* factory = fdds::DomainParticipantFactory::get_instance();
   fdds::DomainParticipantQos qos;
