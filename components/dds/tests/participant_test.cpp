@@ -81,6 +81,37 @@ TEST(Participant, LosslessFramesArriveWholeOverSharedMemory) {
   EXPECT_EQ(writer->samples_sent(), static_cast<uint64_t>(kFrames));
 }
 
+// A chain writer whose readers never all matched before its first sample ends its process (the
+// launcher then respawns it with a new participant); once it has published, or without the opt-in
+// (the downlink, whose ground reader may come late), the sample is given up as before.
+TEST(Participant, AChainWriterWhoseReadersNeverMatchedThrowsOnItsFirstSampleOnly) {
+  Participant writer_side(options("never-matched"));
+  auto chain = writer_side.make_writer<msg::TrackListPubSubType>(kTracksTopic, TopicClass::Chain);
+  chain->set_required_readers(1);
+  chain->exit_if_readers_never_match();
+  msg::TrackList sample;
+  sample.stream_id("uav1");
+  sample.frame_index(1);
+  EXPECT_THROW(chain->write_reliably(sample, std::chrono::milliseconds(300)), ReadersNeverMatched);
+
+  auto without_opt_in = writer_side.make_writer<msg::TrackListPubSubType>("uavmot/test/without-opt-in", TopicClass::Chain);
+  without_opt_in->set_required_readers(1);
+  EXPECT_FALSE(without_opt_in->write_reliably(sample, std::chrono::milliseconds(300)));
+
+  {  // a reader matches, takes the first sample and leaves: the next sample's wait is no start-up fault
+    Participant reader_side(options("leaves"));
+    auto reader = reader_side.make_reader<msg::TrackListPubSubType>(kTracksTopic, TopicClass::Chain);
+    ASSERT_TRUE(chain->wait_for_matched(1, std::chrono::seconds(10)));
+    ASSERT_TRUE(chain->write_reliably(sample, std::chrono::seconds(10)));
+    ASSERT_TRUE(chain->flush(std::chrono::seconds(10)));
+  }
+  const auto gone_by = std::chrono::steady_clock::now() + std::chrono::seconds(15);  // lease: 5 s
+  while (chain->matched() > 0 && std::chrono::steady_clock::now() < gone_by) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_EQ(chain->matched(), 0);
+  sample.frame_index(2);
+  EXPECT_FALSE(chain->write_reliably(sample, std::chrono::milliseconds(300)));
+}
+
 // A tracker respawned with saved state reads the chain with ChainResume and gets what was published
 // while it was down; every other reader (Chain) starts from the current sample.
 TEST(Participant, AResumingReaderGetsTheChainHistoryAVolatileOneDoesNot) {

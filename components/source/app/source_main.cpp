@@ -110,7 +110,8 @@ int source_main(int argc, char** argv) {
         spdlog::info("waiting for {} subscriber(s) on {}", wait_subscribers, dds::kFramesTopic);
         if (!writer->wait_for_matched(wait_subscribers, std::chrono::milliseconds(static_cast<int64_t>(wait_timeout_s * 1000)))) {
           if (shutdown_requested()) return kExitOk;
-          spdlog::error("no subscriber within {} s", wait_timeout_s);
+          spdlog::error("no subscriber within {} s: {} of {} matched on {}", wait_timeout_s, writer->matched(), wait_subscribers,
+                        dds::kFramesTopic);
           return kExitFailure;
         }
       }
@@ -123,6 +124,7 @@ int source_main(int argc, char** argv) {
       // component can tell its latency; the results never depend on them.
       int64_t stream_start_ns = dds::wall_clock_ns();
       int exit_code = kExitOk;
+      bool undelivered = false;  // lossless: a frame its readers did not take; the stream has not ended
       auto start = Clock::now();
       // Live, with subscribers to wait for: a reader that the writer has matched may not be listening
       // yet (segmentation lost frame 1 in about one hd start in six; the last reader can take some
@@ -167,6 +169,7 @@ int source_main(int argc, char** argv) {
             if (lossless) {
               spdlog::error("frame {} was not delivered; stopping so nothing is silently lost", frame.index);
               exit_code = kExitFailure;
+              undelivered = true;
               break;
             }
             health.dropped();
@@ -190,9 +193,13 @@ int source_main(int argc, char** argv) {
         exit_code = kExitBadInput;
       }
       const int64_t skipped_late = dropped_late + ahead.skipped_undecoded();
-      auto eos = dds::end_of_stream_frame(input.stream_id, std::max(frame.index, ahead.last_index()) + index_offset);
-      writer->write_reliably(eos, dds::end_of_stream_patience(node.dds.mode));
-      writer->flush(dds::end_of_stream_patience(node.dds.mode));
+      // No end of stream after an undelivered frame: the readers would finish a stream that a
+      // respawned source (--state-dir) continues from its last delivered frame.
+      if (!undelivered) {
+        auto eos = dds::end_of_stream_frame(input.stream_id, std::max(frame.index, ahead.last_index()) + index_offset);
+        writer->write_reliably(eos, dds::end_of_stream_patience(node.dds.mode));
+        writer->flush(dds::end_of_stream_patience(node.dds.mode));
+      }
       health.report(exit_code == kExitOk ? msg::ComponentState::FINISHED : msg::ComponentState::FAILED);
       const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
       spdlog::info("published {} frames in {:.2f} s ({:.1f} fps){}{}", published, seconds, published / std::max(seconds, 1e-9),

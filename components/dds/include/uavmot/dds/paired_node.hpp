@@ -48,7 +48,10 @@ class PairedNode {
         upstream_(spec_.upstream_timeout_s),
         process_(std::move(process)),
         published_(std::move(published)) {
-    if (mode_ == DeliveryMode::Lossless) writer_->set_required_readers(spec_.required_readers);
+    if (mode_ == DeliveryMode::Lossless) {
+      writer_->set_required_readers(spec_.required_readers);
+      writer_->exit_if_readers_never_match();
+    }
     health_.watch(*reader_a_);
     health_.watch(*reader_b_);
     health_.watch(*writer_);

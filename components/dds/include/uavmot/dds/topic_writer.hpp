@@ -1,9 +1,11 @@
 #pragma once
 // A typed DataWriter whose every write() result is checked.
 
+#include <algorithm>
 #include <atomic>
 #include <chrono>
 #include <functional>
+#include <stdexcept>
 #include <string>
 #include <thread>
 
@@ -14,6 +16,24 @@
 #include "uavmot/core/shutdown.hpp"
 
 namespace uavmot::dds {
+
+// A lossless writer whose readers had not all matched when its first sample had waited `timeout`
+// for them. The process cannot do its job, and a new participant is the remedy: with DDS Security
+// on Fast DDS 2.9, 4 of 28 secure starts of the air chain left one pair of its endpoints unmatched
+// for good (docs/deployment.md, "Endpoints that never match"). The component exits 1
+// (core/app.cpp), so the launcher respawns it; the respawned process is discovered afresh.
+class ReadersNeverMatched : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// How long a lossless sample waits for its readers (to match, then to acknowledge) before it is
+// given up, and, shorter, how long the first sample of a writer with exit_if_readers_never_match()
+// waits before its process exits. The first must exceed the second plus a respawn: a writer whose
+// reader restarts itself must still be waiting when the new reader is there, or two processes give
+// up at once and the frames in work between them are lost (seen: source and motion both at 60 s).
+inline constexpr std::chrono::seconds kReaderPatience{180};
+inline constexpr std::chrono::seconds kFirstSampleReaderPatience{60};
 
 template <class PubSubType>
 class TopicWriter {
@@ -36,13 +56,22 @@ class TopicWriter {
   // then writes this one; flush() waits for the last. Readers keep bounded queues, so a slow reader
   // holds the writer back here instead of losing data, and the wait for the previous sample overlaps
   // with whatever the caller did since (e.g. decoding the next frame).
-  // Returns false only when `timeout` passes without progress or shutdown is requested.
-  bool write_reliably(Sample& sample, std::chrono::milliseconds timeout = std::chrono::seconds(60)) {
+  // Returns false only when `timeout` passes without progress or shutdown is requested; throws
+  // ReadersNeverMatched when the first sample waited that long for readers and
+  // exit_if_readers_never_match() was called.
+  bool write_reliably(Sample& sample, std::chrono::milliseconds timeout = kReaderPatience) {
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     if (matched() < required_readers_) {
       // A reader is (re)starting: publishing now would lose this sample for it.
       spdlog::info("{}: waiting for {} reader(s), {} matched", topic_, required_readers_, matched());
-      if (!wait_for_matched(required_readers_, timeout)) {
+      const bool first_sample_rule = exit_if_never_matched_ && samples_sent_ == 0;
+      const auto wait = first_sample_rule ? std::min<std::chrono::milliseconds>(timeout, kFirstSampleReaderPatience) : timeout;
+      if (!wait_for_matched(required_readers_, wait)) {
+        if (first_sample_rule && !shutdown_requested()) {
+          throw ReadersNeverMatched(topic_ + ": only " + std::to_string(matched()) + " of " + std::to_string(required_readers_) +
+                                    " readers matched in the " + std::to_string(wait.count()) +
+                                    " ms before the first sample; exiting, so that a restarted process is discovered afresh");
+        }
         spdlog::error("{}: fewer than {} readers for {} ms", topic_, required_readers_, timeout.count());
         return false;
       }
@@ -79,6 +108,12 @@ class TopicWriter {
   // Lossless publishing waits until at least this many readers are matched (at the start, and again
   // whenever a reader leaves, e.g. a component being respawned).
   void set_required_readers(int count) { required_readers_ = count; }
+
+  // For a writer whose readers are processes started beside it (the chain under one launcher), so
+  // that their absence after the timeout is a fault, not a late start: then the first sample's
+  // wait throws ReadersNeverMatched instead of giving that sample up. (Not the downlink: its
+  // ground reader may come much later.)
+  void exit_if_readers_never_match() { exit_if_never_matched_ = true; }
 
   int matched() const {
     eprosima::fastdds::dds::PublicationMatchedStatus status;
@@ -122,6 +157,7 @@ class TopicWriter {
   std::function<void()> while_waiting_;
   PubSubType type_;
   int required_readers_ = 0;
+  bool exit_if_never_matched_ = false;
   uint64_t samples_sent_ = 0;
   uint64_t bytes_sent_ = 0;
 };
