@@ -17,8 +17,8 @@
 
 namespace uavmot::dds {
 
-// A lossless writer whose readers had not all matched when its first sample had waited `timeout`
-// for them. The process cannot do its job, and a new participant is the remedy: with DDS Security
+// A lossless writer whose readers had not all matched when its first sample had waited
+// kFirstSampleReaderPatience for them. The process cannot do its job, and a new participant is the remedy: with DDS Security
 // on Fast DDS 2.9, 4 of 28 secure starts of the air chain left one pair of its endpoints unmatched
 // for good (docs/deployment.md, "Endpoints that never match"). The component exits 1
 // (core/app.cpp), so the launcher respawns it; the respawned process is discovered afresh.
@@ -57,8 +57,8 @@ class TopicWriter {
   // holds the writer back here instead of losing data, and the wait for the previous sample overlaps
   // with whatever the caller did since (e.g. decoding the next frame).
   // Returns false only when `timeout` passes without progress or shutdown is requested; throws
-  // ReadersNeverMatched when the first sample waited that long for readers and
-  // exit_if_readers_never_match() was called.
+  // ReadersNeverMatched when exit_if_readers_never_match() was called and the first sample waited
+  // kFirstSampleReaderPatience (or `timeout`, if shorter) for its readers.
   bool write_reliably(Sample& sample, std::chrono::milliseconds timeout = kReaderPatience) {
     const auto deadline = std::chrono::steady_clock::now() + timeout;
     if (matched() < required_readers_) {
