@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <set>
+#include <stdexcept>
 #include <string>
 
 #include <spdlog/spdlog.h>
@@ -28,23 +29,40 @@ inline double latency_ms_since(int64_t capture_time_ns) {
   return static_cast<double>(wall_clock_ns() - capture_time_ns) / 1e6;
 }
 
-// Lossless: wait for the readers (backpressure, nothing lost). Live: never block the chain.
+// Lossless: wait for the readers (backpressure, nothing lost) up to `patience`. Live: never block the chain.
 template <class PubSubType>
-bool publish(TopicWriter<PubSubType>& writer, typename PubSubType::type& sample, DeliveryMode mode) {
-  return mode == DeliveryMode::Lossless ? writer.write_reliably(sample) : writer.write(sample);
+bool publish(TopicWriter<PubSubType>& writer, typename PubSubType::type& sample, DeliveryMode mode,
+             std::chrono::milliseconds patience = kReaderPatience) {
+  return mode == DeliveryMode::Lossless ? writer.write_reliably(sample, patience) : writer.write(sample);
 }
+
+// A lossless frame output its readers did not take within the writer's patience. Giving it up would
+// lose it for good (the run could still end "complete"), so the process exits 1 instead; the
+// launcher respawns it and the new one redoes the frame from its saved state and the writers'
+// history, as after a crash (docs/launch.md, "Faults, component by component").
+class OutputNotDelivered : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
 
 // Called once a frame's output is published (e.g. to save state that includes that frame).
 using PublishedHook = std::function<void(const std::string& stream, int64_t index)>;
 
 // The output of frame INDEX, processed in PROCESS_MS: published by delivery mode (a sample live mode
-// could not deliver counts as a drop), then PUBLISHED, then the frame's health report (its latency
-// from CAPTURE_TIME_NS to now).
+// could not deliver counts as a drop; lossless mode throws OutputNotDelivered), then PUBLISHED, then
+// the frame's health report (its latency from CAPTURE_TIME_NS to now).
 template <class PubSubType>
 void publish_frame_output(TopicWriter<PubSubType>& writer, typename PubSubType::type& out, DeliveryMode mode,
                           HealthReporter& health, const PublishedHook& published, const std::string& stream, int64_t index,
-                          double process_ms, int64_t capture_time_ns) {
-  if (!publish(writer, out, mode)) health.dropped();
+                          double process_ms, int64_t capture_time_ns, std::chrono::milliseconds patience = kReaderPatience) {
+  if (!publish(writer, out, mode, patience)) {
+    if (mode == DeliveryMode::Lossless && !shutdown_requested()) {
+      throw OutputNotDelivered(writer.topic() + ": the output of frame " + std::to_string(index) + " of stream '" + stream +
+                               "' was not taken by its readers within " + std::to_string(patience.count()) +
+                               " ms; exiting, so that a restarted process redoes it (giving it up would lose it)");
+    }
+    health.dropped();
+  }
   if (published) published(stream, index);
   health.frame_out(index, process_ms, latency_ms_since(capture_time_ns));
   health.set_bytes_out(writer.bytes_sent());

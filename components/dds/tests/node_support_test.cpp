@@ -1,0 +1,60 @@
+#include "uavmot/dds/node_support.hpp"
+
+#include <thread>
+
+#include <gtest/gtest.h>
+
+#include "tracksPubSubTypes.h"
+
+namespace uavmot::dds {
+namespace {
+
+constexpr int kDomain = 101;  // of its own, so parallel test runs do not see each other
+
+DdsOptions options(const std::string& name) {
+  DdsOptions o;
+  o.domain_id = kDomain;
+  o.participant_name = name;
+  return o;
+}
+
+msg::TrackList frame_output(int64_t index) {
+  msg::TrackList sample;
+  sample.stream_id("uav1");
+  sample.frame_index(index);
+  return sample;
+}
+
+// Lossless: a frame output that its reader does not take (here: the reader left and no new one
+// came) ends the process instead of being given up, which would lose the frame for good; the
+// launcher's respawn redoes it.
+TEST(NodeSupport, ALosslessFrameOutputItsReadersDidNotTakeEndsTheProcess) {
+  Participant node_side(options("node"));
+  HealthReporter health(node_side, "tracking", "*", std::chrono::hours(1));
+  auto writer = node_side.make_writer<msg::TrackListPubSubType>(kTracksTopic, TopicClass::Chain);
+  writer->set_required_readers(1);
+  int published_hook_calls = 0;
+  const PublishedHook published = [&](const std::string&, int64_t) { ++published_hook_calls; };
+  {
+    Participant reader_side(options("reader"));
+    auto reader = reader_side.make_reader<msg::TrackListPubSubType>(kTracksTopic, TopicClass::Chain);
+    ASSERT_TRUE(writer->wait_for_matched(1, std::chrono::seconds(10)));
+    auto first = frame_output(1);
+    publish_frame_output(*writer, first, DeliveryMode::Lossless, health, published, "uav1", 1, 1.0, 0);
+    ASSERT_TRUE(writer->flush(std::chrono::seconds(10)));
+  }
+  EXPECT_EQ(published_hook_calls, 1);
+  const auto gone_by = std::chrono::steady_clock::now() + std::chrono::seconds(15);  // lease: 5 s
+  while (writer->matched() > 0 && std::chrono::steady_clock::now() < gone_by) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  ASSERT_EQ(writer->matched(), 0);
+
+  auto second = frame_output(2);
+  EXPECT_THROW(publish_frame_output(*writer, second, DeliveryMode::Lossless, health, published, "uav1", 2, 1.0, 0,
+                                    std::chrono::milliseconds(300)),
+               OutputNotDelivered);
+  EXPECT_EQ(published_hook_calls, 1) << "an undelivered frame counted as published (its state would be saved)";
+  EXPECT_EQ(health.dropped_count(), 0u);
+}
+
+}  // namespace
+}  // namespace uavmot::dds
