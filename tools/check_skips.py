@@ -14,7 +14,8 @@ case or the ctest name, and may use shell wildcards (fnmatch).
 import fnmatch
 import pathlib
 import sys
-import xml.etree.ElementTree as ET
+
+from test_reports import ctest_cases, gtest_reports
 
 
 def read_allow_list(path):
@@ -40,12 +41,8 @@ def skipped_message(case):
 def gtest_skips(directory):
     """(name, reason) of every skipped GTest case in DIR/*.xml (GTest's XML report)."""
     skips = []
-    for report in sorted(pathlib.Path(directory).glob("*.xml")):
-        try:
-            root = ET.parse(report).getroot()
-        except ET.ParseError as error:  # a binary that crashed mid-report: ctest reports the failure
-            print(f"check_skips: {report.name}: unreadable report ({error})")
-            continue
+    unreadable = lambda report, error: print(f"check_skips: {report.name}: unreadable report ({error})")
+    for _, root in gtest_reports(directory, unreadable):
         for case in root.iter("testcase"):
             message = skipped_message(case)
             if case.get("result") == "skipped" or message is not None:
@@ -56,13 +53,10 @@ def gtest_skips(directory):
 def ctest_skips(junit_files):
     """(name, reason) of every test ctest itself did not run (skip return code, missing binary, ...)."""
     skips = []
-    for path in junit_files:
-        if not pathlib.Path(path).exists():
-            continue
-        for case in ET.parse(path).getroot().iter("testcase"):
-            message = skipped_message(case)
-            if case.get("status") in ("notrun", "disabled") or message is not None:
-                skips.append((case.get("name"), message or case.get("status")))
+    for case in ctest_cases(junit_files):
+        message = skipped_message(case)
+        if case.get("status") in ("notrun", "disabled") or message is not None:
+            skips.append((case.get("name"), message or case.get("status")))
     return skips
 
 

@@ -12,9 +12,9 @@ lines it prints are one line per failure, so even a short tail names the case an
 
 Exit code 0 always: the run's verdict is ctest's.
 """
-import pathlib
 import sys
-import xml.etree.ElementTree as ET
+
+from test_reports import ctest_cases, gtest_reports
 
 HEAD_LINES = 4   # the assertion: file:line, expected, actual
 TAIL_LINES = 12  # the end of an attached log: usually where a process said why it stopped
@@ -30,12 +30,8 @@ def excerpt(text, head=HEAD_LINES, tail=TAIL_LINES):
 def gtest_failures(directory):
     """(suite.case, [failure message, ...]) of every failed GTest case; the binaries with a report."""
     failures, binaries = [], set()
-    for report in sorted(pathlib.Path(directory).glob("*.xml")):
-        try:
-            root = ET.parse(report).getroot()
-        except ET.ParseError:
-            continue  # a binary that crashed mid-report: its ctest output is reported instead
-        binaries.add(report.stem)
+    for binary, root in gtest_reports(directory):  # a crashed binary's ctest output is reported instead
+        binaries.add(binary)
         for case in root.iter("testcase"):
             messages = [f.get("message") or f.text or "" for f in case.findall("failure")]
             if messages:
@@ -46,14 +42,11 @@ def gtest_failures(directory):
 def ctest_failures(junit_files, binaries_with_report):
     """(test name, output) of every failed ctest test that has no readable GTest report."""
     failures = []
-    for path in junit_files:
-        if not pathlib.Path(path).exists():
+    for case in ctest_cases(junit_files):
+        if case.get("status") != "fail" or case.get("name") in binaries_with_report:
             continue
-        for case in ET.parse(path).getroot().iter("testcase"):
-            if case.get("status") != "fail" or case.get("name") in binaries_with_report:
-                continue
-            output = case.find("system-out")
-            failures.append((case.get("name"), output.text if output is not None else ""))
+        output = case.find("system-out")
+        failures.append((case.get("name"), output.text if output is not None else ""))
     return failures
 
 
@@ -68,10 +61,11 @@ def main(argv):
     print("report_failures: why each failed test failed")
     for name, messages in gtest:
         for message in messages:
+            lines = excerpt(message)
             print(f"--- {name}")
-            for line in excerpt(message):
+            for line in lines:
                 print(f"    {line}")
-            assertion = " | ".join(excerpt(message)[:2])
+            assertion = " | ".join(lines[:2])
             summary.append(f"FAILED {name}: {assertion[:200]}")
     for name, output in ctest:
         print(f"--- {name} (no GTest report: its output's end)")
