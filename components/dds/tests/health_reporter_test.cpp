@@ -5,18 +5,14 @@
 #include <gtest/gtest.h>
 
 #include "healthPubSubTypes.h"
+#include "test_participants.hpp"
 
 namespace uavmot::dds {
 namespace {
 
 constexpr int kDomain = 100;  // of its own, so parallel test runs do not see each other
 
-DdsOptions options(const std::string& name) {
-  DdsOptions o;
-  o.domain_id = kDomain;
-  o.participant_name = name;
-  return o;
-}
+DdsOptions options(const std::string& name) { return test_support::options_on(kDomain, name); }
 
 // A node busy with a backlog never returns to the loop where it calls tick(): frame_out() alone
 // must keep the reports coming (seen: motion under ASan, and tracking on a loaded host, showed no

@@ -1,9 +1,8 @@
 #include "uavmot/dds/node_support.hpp"
 
-#include <thread>
-
 #include <gtest/gtest.h>
 
+#include "test_participants.hpp"
 #include "tracksPubSubTypes.h"
 
 namespace uavmot::dds {
@@ -11,12 +10,7 @@ namespace {
 
 constexpr int kDomain = 101;  // of its own, so parallel test runs do not see each other
 
-DdsOptions options(const std::string& name) {
-  DdsOptions o;
-  o.domain_id = kDomain;
-  o.participant_name = name;
-  return o;
-}
+DdsOptions options(const std::string& name) { return test_support::options_on(kDomain, name); }
 
 msg::TrackList frame_output(int64_t index) {
   msg::TrackList sample;
@@ -44,9 +38,7 @@ TEST(NodeSupport, ALosslessFrameOutputItsReadersDidNotTakeEndsTheProcess) {
     ASSERT_TRUE(writer->flush(std::chrono::seconds(10)));
   }
   EXPECT_EQ(published_hook_calls, 1);
-  const auto gone_by = std::chrono::steady_clock::now() + std::chrono::seconds(15);  // lease: 5 s
-  while (writer->matched() > 0 && std::chrono::steady_clock::now() < gone_by) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  ASSERT_EQ(writer->matched(), 0);
+  ASSERT_TRUE(test_support::wait_until_unmatched(*writer));
 
   auto second = frame_output(2);
   EXPECT_THROW(publish_frame_output(*writer, second, DeliveryMode::Lossless, health, published, "uav1", 2, 1.0, 0,

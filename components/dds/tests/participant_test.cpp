@@ -6,6 +6,7 @@
 #include <opencv2/core.hpp>
 
 #include "framePubSubTypes.h"
+#include "test_participants.hpp"
 #include "tracksPubSubTypes.h"
 #include "uavmot/core/checksum.hpp"
 #include "uavmot/core/error.hpp"
@@ -18,12 +19,7 @@ namespace {
 constexpr int kDomain = 91;
 
 DdsOptions options(const std::string& name, const std::string& profiles_file = "", const std::string& profile = "local") {
-  DdsOptions o;
-  o.domain_id = kDomain;
-  o.participant_name = name;
-  o.profiles_file = profiles_file;
-  o.participant_profile = profile;
-  return o;
+  return test_support::options_on(kDomain, name, profiles_file, profile);
 }
 
 // The frame indices `reader` takes into `sample` until it holds `count` of them (or 10 s pass).
@@ -105,9 +101,7 @@ TEST(Participant, AChainWriterWhoseReadersNeverMatchedThrowsOnItsFirstSampleOnly
     ASSERT_TRUE(chain->write_reliably(sample, std::chrono::seconds(10)));
     ASSERT_TRUE(chain->flush(std::chrono::seconds(10)));
   }
-  const auto gone_by = std::chrono::steady_clock::now() + std::chrono::seconds(15);  // lease: 5 s
-  while (chain->matched() > 0 && std::chrono::steady_clock::now() < gone_by) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-  ASSERT_EQ(chain->matched(), 0);
+  ASSERT_TRUE(test_support::wait_until_unmatched(*chain));
   sample.frame_index(2);
   EXPECT_FALSE(chain->write_reliably(sample, std::chrono::milliseconds(300)));
 }
