@@ -10,7 +10,7 @@ lines it prints are one line per failure, so even a short tail names the case an
 
   report_failures.py GTEST_XML_DIR [CTEST_JUNIT.xml ...]
 
-Exit code 0 always: the run's verdict is ctest's.
+Exit code 0 whatever the tests did (the verdict is ctest's); 1, with this text, without arguments.
 """
 import sys
 
