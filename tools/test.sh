@@ -10,16 +10,25 @@ cd "$(dirname "$0")/.."
 skip=" ${UAVMOT_SKIP_STAGES:-} "
 if [[ ${UAVMOT_SANITIZER_STAGES:-1} == 0 ]]; then skip+=" asan tsan "; fi
 fuzz_seconds=${UAVMOT_FUZZ_SECONDS:-20}
+# A full run writes several GiB (three build folders, test outputs, container images); a disk that
+# fills half-way fails tests with misleading errors, so each stage first checks what is free.
+min_free_gib=${UAVMOT_MIN_FREE_GIB:-4}
 timings=()
+free_gib() { df -Pk . | awk 'NR == 2 { printf "%d", $4 / 1048576 }'; }
 stage() {  # name command...
-  local name=$1 start=$SECONDS
+  local name=$1 start=$SECONDS free
   shift
   if [[ $skip == *" $name "* ]]; then
     echo "test.sh: stage $name skipped (UAVMOT_SKIP_STAGES or UAVMOT_SANITIZER_STAGES=0)"
     timings+=("$name: skipped")
     return
   fi
-  echo "test.sh: stage $name"
+  free=$(free_gib)
+  echo "test.sh: stage $name ($free GiB free on $(df -P . | awk 'NR == 2 { print $6 }'))"
+  if ((free < min_free_gib)); then
+    echo "test.sh: stage $name needs at least $min_free_gib GiB free (UAVMOT_MIN_FREE_GIB); free some space and run again" >&2
+    exit 1
+  fi
   "$@"
   timings+=("$name: $((SECONDS - start)) s")
 }
