@@ -1,5 +1,8 @@
 #include "uavmot/dds/node_support.hpp"
 
+#include <cstdio>
+#include <cstdlib>
+
 #include <gtest/gtest.h>
 
 #include "test_participants.hpp"
@@ -46,6 +49,35 @@ TEST(NodeSupport, ALosslessFrameOutputItsReadersDidNotTakeEndsTheProcess) {
                OutputNotDelivered);
   EXPECT_EQ(published_hook_calls, 1) << "an undelivered frame counted as published (its state would be saved)";
   EXPECT_EQ(health.dropped_count(), 0u);
+}
+
+// A stop (SIGTERM) that ends a lossless frame output's wait for its readers: the frame was not sent,
+// so it must not count as published (its state would be saved and a resumed run would skip it).
+// The stop flag is process-wide, so the case runs in a child process of its own (a death test that
+// re-runs this binary) and reports by its exit code.
+TEST(NodeSupport, AStopDuringALosslessWaitDoesNotCountTheFrameAsPublished) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  auto stop_while_waiting = [] {
+    Participant node_side(options("stopping-node"));
+    HealthReporter health(node_side, "tracking", "*", std::chrono::hours(1));
+    auto writer = node_side.make_writer<msg::TrackListPubSubType>(kTracksTopic, TopicClass::Chain);
+    writer->set_required_readers(1);  // and no reader comes
+    int published_hook_calls = 0;
+    const PublishedHook published = [&](const std::string&, int64_t) { ++published_hook_calls; };
+    request_shutdown();
+    auto output = frame_output(1);
+    try {
+      publish_frame_output(*writer, output, DeliveryMode::Lossless, health, published, "uav1", 1, 1.0, 0,
+                           std::chrono::seconds(30));
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "threw: %s\n", e.what());
+      std::_Exit(3);
+    }
+    std::fprintf(stderr, "published hook calls: %d, dropped: %llu\n", published_hook_calls,
+                 static_cast<unsigned long long>(health.dropped_count()));
+    std::_Exit(published_hook_calls == 0 && health.dropped_count() == 0 ? 0 : 4);
+  };
+  EXPECT_EXIT(stop_while_waiting(), ::testing::ExitedWithCode(0), "published hook calls: 0, dropped: 0");
 }
 
 }  // namespace

@@ -49,14 +49,18 @@ class OutputNotDelivered : public std::runtime_error {
 using PublishedHook = std::function<void(const std::string& stream, int64_t index)>;
 
 // The output of frame INDEX, processed in PROCESS_MS: published by delivery mode (a sample live mode
-// could not deliver counts as a drop; lossless mode throws OutputNotDelivered), then PUBLISHED, then
-// the frame's health report (its latency from CAPTURE_TIME_NS to now).
+// could not deliver counts as a drop; lossless mode throws OutputNotDelivered, or returns at once
+// when the process is stopping), then PUBLISHED, then the frame's health report (its latency from
+// CAPTURE_TIME_NS to now).
 template <class PubSubType>
 void publish_frame_output(TopicWriter<PubSubType>& writer, typename PubSubType::type& out, DeliveryMode mode,
                           HealthReporter& health, const PublishedHook& published, const std::string& stream, int64_t index,
                           double process_ms, int64_t capture_time_ns, std::chrono::milliseconds patience = kReaderPatience) {
   if (!publish(writer, out, mode, patience)) {
-    if (mode == DeliveryMode::Lossless && !shutdown_requested()) {
+    if (mode == DeliveryMode::Lossless) {
+      // Stopping (SIGTERM) during the wait: the frame was not sent, so it must not count as
+      // published; its state is not saved and a resumed run redoes it.
+      if (shutdown_requested()) return;
       throw OutputNotDelivered(writer.topic() + ": the output of frame " + std::to_string(index) + " of stream '" + stream +
                                "' was not taken by its readers within " + std::to_string(patience.count()) +
                                " ms; exiting, so that a restarted process redoes it (giving it up would lose it)");
