@@ -5,7 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
-#include "corner_bound.hpp"
+#include "min_eigen_map.hpp"
 
 namespace uavmot::motion {
 namespace {
@@ -52,17 +52,14 @@ class CellBuckets {
   std::vector<std::vector<cv::Point2f>> buckets_;
 };
 
-// Local maxima of the minimum-eigenvalue map inside `cell` (image coordinates), strongest first.
-// Cells that cannot hold a corner (may_hold_corner) are passed over without computing the map.
+// Local maxima of the corner response inside `cell` (image coordinates), strongest first. The
+// response is computed for the cell and its one-pixel rim (the neighbours of the local-maximum
+// test), exactly and at the search's threshold as floor (min_eigen_map.hpp): most searched cells
+// are flat or plain edges and cost no square root.
 std::vector<Candidate> cell_candidates(const cv::Mat& gray, const cv::Rect& cell, const MotionOptions& o) {
-  if (!may_hold_corner(gray, cell, o)) return {};
-  const int pad = o.corner_block_size / 2 + 2;
-  const cv::Rect roi = cv::Rect(cell.x - pad, cell.y - pad, cell.width + 2 * pad, cell.height + 2 * pad) &
-                       cv::Rect(0, 0, gray.cols, gray.rows);
-  // A ROI of the full image: the filters read the real neighbours outside it, so responses equal
-  // a whole-image computation.
+  const cv::Rect roi = cv::Rect(cell.x - 1, cell.y - 1, cell.width + 2, cell.height + 2) & cv::Rect(0, 0, gray.cols, gray.rows);
   cv::Mat eig;
-  cv::cornerMinEigenVal(gray(roi), eig, o.corner_block_size, 3);
+  min_eigen_values(gray, roi, o.corner_block_size, o.min_corner_response, eig);
   const auto threshold = static_cast<float>(o.min_corner_response);
   std::vector<Candidate> out;
   for (int y = cell.y; y < cell.y + cell.height; ++y) {

@@ -23,7 +23,7 @@ int detection_cell_size(const MotionOptions& options, cv::Size size);
 // max_features in total, above min_corner_response. Deterministic order: when the budget cannot
 // serve every cell that lacks features, the cells whose 3x3 neighbourhood holds the fewest features
 // first (ties row-major), so the budget goes where the image is least covered; strongest corner
-// first within a cell.
+// first within a cell. The response (min_eigen_map.hpp) is computed for the searched cells only.
 std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
                                                 const MotionOptions& options);
 
