@@ -1,6 +1,5 @@
 #include "min_eigen_map.hpp"
 
-#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <vector>
@@ -49,10 +48,9 @@ void subtract(int32_t* __restrict sum, const int32_t* __restrict in, size_t n) {
 }
 
 // One output row from the column sums of the block's rows: the block sums along the row (sliding,
-// exact), then the smaller eigenvalue. Never inlined, so every caller runs the same instructions
-// (no contraction or vectorisation that differs between call sites).
-[[gnu::noinline]] void eigen_row(const int32_t* sum_xx, const int32_t* sum_xy, const int32_t* sum_yy, int width, int block,
-                                 double scale2, double floor, float* out) {
+// exact), then the smaller eigenvalue.
+void eigen_row(const int32_t* sum_xx, const int32_t* sum_xy, const int32_t* sum_yy, int width, int block,
+               double scale2, double floor, float* out) {
   int32_t a = 0, b = 0, c = 0;
   for (int k = 0; k < block; ++k) {
     a += sum_xx[k];

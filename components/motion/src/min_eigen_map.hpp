@@ -11,8 +11,6 @@
 
 #include <opencv2/core/mat.hpp>
 
-#include "uavmot/motion/motion_options.hpp"
-
 namespace uavmot::motion {
 
 // The response of every pixel of `region` (inside the 8-bit grey image) into `out` (CV_32F,
