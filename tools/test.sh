@@ -22,6 +22,10 @@ for name in "${!stage_gib[@]}"; do
   [[ $skip == *" $name "* ]] || need_gib=$((need_gib + stage_gib[$name]))
 done
 need_gib=${UAVMOT_MIN_FREE_GIB:-$need_gib}
+if [[ ! $need_gib =~ ^[0-9]+$ ]]; then
+  echo "test.sh: UAVMOT_MIN_FREE_GIB='$need_gib': expected a whole number of GiB" >&2
+  exit 2
+fi
 if (($(free_gib) < need_gib)); then
   echo "test.sh: $(free_gib) GiB free on $(df -P . | awk 'NR == 2 { print $6 }'), the stages to run need about $need_gib GiB (UAVMOT_MIN_FREE_GIB to override); free some space and run again" >&2
   exit 1
