@@ -190,7 +190,10 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
   cv::eigen(cv::Mat(normal), eigenvalues, eigenvectors);
   const cv::Vec3d refined = canonical({eigenvectors.at<double>(2, 0), eigenvectors.at<double>(2, 1), eigenvectors.at<double>(2, 2)});
   const Support refined_support = count_support(refined, points, samples, significant, o, nullptr);
-  if (refined_support.score >= best.score) {
+  // Only a refinement that still explains two features may replace the model: when every supporter
+  // weighs nothing (all barely above their noise), `normal` is zero, its eigenvector arbitrary, and
+  // an epipole explaining none of them would tie on a score of zero.
+  if (refined_support.count >= 2 && refined_support.score >= best.score) {
     best = refined_support;
     best_e = refined;
     count_support(best_e, points, samples, significant, o, &sides);

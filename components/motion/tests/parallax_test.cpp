@@ -390,5 +390,32 @@ TEST_F(ParallaxScene, AStreamsFirstFitExplainsBeforeTheModelIsStable) {
   EXPECT_EQ(later.independent_velocity(sample_of(roof20, now, v)), v.velocity);
 }
 
+// Found on `dense` seed 5 with `motion: {min_moving_speed_px: 0.1}` (a segmentation fault): last
+// frame's epipole explains this frame's residuals, but every one of them is barely above its noise,
+// so each weighs nothing (direction_weight 0) and the least-squares refinement has no lines to fit.
+// Its arbitrary epipole, explaining none of them, tied on that score of zero and replaced the model;
+// the fit then took the median parallax of no supporters.
+TEST(ParallaxFit, ResidualsBarelyAboveTheirNoiseKeepLastFramesEpipole) {
+  MotionOptions o;
+  o.parallax_min_support = 4;
+  ParallaxFilter filter(o);
+  // Residuals along +y (the flight), so the epipole is at infinity along y. A fit with no lines to
+  // weigh returns OpenCV's eigenvector of a zero matrix, the point at infinity along x, whose lines
+  // run across every residual here and explain none.
+  auto samples = [](double speed) {
+    std::vector<ParallaxSample> out;
+    for (int k = 0; k < 12; ++k) {
+      out.push_back({cv::Point2f(100.0F + 70.0F * static_cast<float>(k), 300.0F), {0.0, speed}, 0.02, 10.0});  // cap 1.1
+    }
+    return out;
+  };
+  const ParallaxModel& first = filter.fit(samples(0.5), kSize, 1, 1);
+  ASSERT_EQ(first.support, 12);
+  // 0.08 px/frame: significant (above 3 sigma = 0.06) but within the line tolerance (3 sigma + 0.05).
+  const ParallaxModel& second = filter.fit(samples(0.08), kSize, 2, 2);
+  EXPECT_EQ(second.support, 12);
+  EXPECT_NEAR(std::abs(epipolar_direction(second.epipole, cv::Point2f(300.0F, 300.0F))[1]), 1.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace uavmot::motion
