@@ -8,7 +8,8 @@ the oriented boxes covers half of the vehicle or half of the box). Each miss is 
     box grown by 1.5 px on each side (eval's feature tolerance), i.e. motion layer or later;
   - its neighbourhood: crowded when another moving vehicle's centre is within 1.5 of its lengths;
   - its speed (gt vx, vy: ground motion in px/frame): slow under 0.3 px/frame, then accelerating or
-    decelerating when its speed 5 frames earlier differs by more than 0.02 px/frame, else steady.
+    decelerating when its speed 5 frames earlier differs by more than 0.02 px/frame, else steady;
+  - how long it has been in view (frames since it was first at least half visible).
 The default first frame, 11, leaves out the chain's start (no motion before frame 2, confirmation).
 
     python3 tools/miss_causes.py SEQUENCE_DIR RESULT_DIR [--first-frame N]
@@ -63,6 +64,18 @@ def main():
             return "accelerating"
         return "steady"
 
+    # Frames since each vehicle was first in view (visible at least half, moving or not): a vehicle
+    # that has just come in has no feature history yet, whatever else is wrong.
+    first_seen = {}
+    for frame, rows in sorted(every_vehicle.items()):
+        for g, _, _ in rows:
+            if float(g["visibility"]) >= 0.5:
+                first_seen.setdefault(int(g["id"]), frame)
+    age_bands = ((0, 2), (3, 5), (6, 10), (11, 20), (21, None))
+    def age_band(vehicle_id, frame):
+        age = frame - first_seen[vehicle_id]
+        return next(b for b in age_bands if age >= b[0] and (b[1] is None or age <= b[1]))
+    age_instances, age_missed = collections.Counter(), collections.Counter()
     instances = 0
     causes = collections.Counter()
     slow_instances, slow_missed = collections.Counter(), collections.Counter()
@@ -75,9 +88,12 @@ def main():
             instances += 1
             slow = speed_class(int(g["id"]), frame)
             slow_instances[slow] += 1
+            age = age_band(int(g["id"]), frame)
+            age_instances[age] += 1
             if any(belongs(p, poly) for _, _, p in tracks.get(frame, [])):
                 continue
             slow_missed[slow] += 1
+            age_missed[age] += 1
             grown = corners(box[0], box[1], box[2] + 3.0, box[3] + 3.0, box[4])
             has_feature = any(inside_convex(p, grown) for p in moving_features.get(frame, []))
             crowded = any(math.hypot(b[0] - box[0], b[1] - box[1]) < 1.5 * box[3]
@@ -89,6 +105,9 @@ def main():
         print(f"  {key[0]:8s} {key[1]:18s} {causes[key]:6d}  {100.0 * causes[key] / max(missed, 1):5.1f} % of the misses")
     for kind in ("accelerating", "decelerating", "steady"):
         print(f"  slower than 0.3 px/frame, {kind:12s}: {slow_missed[kind]:5d} missed of {slow_instances[kind]:5d} instances")
+    for band in age_bands:
+        name = f"{band[0]}-{band[1]}" if band[1] is not None else f"{band[0]}+"
+        print(f"  in view for {name:5s} frames: {age_missed[band]:5d} missed of {age_instances[band]:5d} instances")
 
 if __name__ == "__main__":
     main()
