@@ -33,6 +33,8 @@ fi
 stage() {  # name command...
   local name=$1 start=$SECONDS
   shift
+  # A stage without a disk estimate would count 0 GiB in the check above: name it in stage_gib.
+  [[ -v "stage_gib[$name]" ]] || { echo "test.sh: stage $name has no disk estimate in stage_gib" >&2; exit 2; }
   if [[ $skip == *" $name "* ]]; then
     echo "test.sh: stage $name skipped (UAVMOT_SKIP_STAGES or UAVMOT_SANITIZER_STAGES=0)"
     timings+=("$name: skipped")
