@@ -22,6 +22,8 @@ import sys
 
 from false_alarm_places import belongs, corners, read_run
 
+MIN_VISIBILITY = 0.5  # an instance is scored, and a vehicle in view, from half visible
+
 
 def inside_convex(point, poly):
     signs = set()
@@ -69,7 +71,7 @@ def main():
     first_seen = {}
     for frame, rows in sorted(every_vehicle.items()):
         for g, _, _ in rows:
-            if float(g["visibility"]) >= 0.5:
+            if float(g["visibility"]) >= MIN_VISIBILITY:
                 first_seen.setdefault(int(g["id"]), frame)
     age_bands = ((0, 2), (3, 5), (6, 10), (11, 20), (21, None))
     def age_band(vehicle_id, frame):
@@ -83,7 +85,7 @@ def main():
         if frame < args.first_frame:
             continue
         for g, box, poly in vehicles:
-            if float(g["visibility"]) < 0.5:
+            if float(g["visibility"]) < MIN_VISIBILITY:
                 continue
             instances += 1
             slow = speed_class(int(g["id"]), frame)
