@@ -14,9 +14,10 @@ endfunction()
 
 # Sanitizers apply to every target (generated IDL code included); tools/sanitize.sh and
 # tools/fuzz.sh set them. UBSan aborts at its first finding instead of printing and carrying on,
-# so a test with undefined behaviour fails.
+# so a test with undefined behaviour fails. -g1 (line tables only) keeps file:line in every report
+# and builds faster than -g: CI builds these from a cold cache within its time limit.
 if(UAVMOT_SANITIZE)
-  add_compile_options(-fsanitize=${UAVMOT_SANITIZE} -fno-omit-frame-pointer -g)
+  add_compile_options(-fsanitize=${UAVMOT_SANITIZE} -fno-omit-frame-pointer -g1)
   if(UAVMOT_SANITIZE MATCHES "undefined")
     add_compile_options(-fno-sanitize-recover=all)
   endif()
@@ -57,6 +58,8 @@ function(uavmot_add_gtest name)
   endif()
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main GTest::gmock)
+  # tests/support: helpers every test may use (scratch_dir.hpp: where tests write their files).
+  target_include_directories(${name} PRIVATE ${CMAKE_SOURCE_DIR}/tests/support)
   target_compile_definitions(${name} PRIVATE
     UAVMOT_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
     UAVMOT_BINARY_DIR="${CMAKE_BINARY_DIR}"

@@ -3,8 +3,6 @@
 // uavmot::InputError naming the file and key, never a crash or another exception; a
 // configuration the loader accepts must also be accepted by the chain it configures.
 
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -13,6 +11,7 @@
 #include <vector>
 
 #include "fuzz_targets.hpp"
+#include "scratch_dir.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/core/scene_info.hpp"
 #include "uavmot/core/yaml_config.hpp"
@@ -49,8 +48,7 @@ int config(const uint8_t* data, size_t size) {
     pipeline::Chain chain(options);
   } catch (const InputError&) {
   }
-  static const std::string path =
-      (std::filesystem::temp_directory_path() / ("uavmot_config_fuzz_" + std::to_string(::getpid()) + ".yaml")).string();
+  static const std::string path = test_support::scratch_path("config_fuzz_profile.yaml").string();
   std::ofstream(path, std::ios::trunc) << text;
   try {
     const auto profile = launch::load_profile(path);

@@ -3,8 +3,6 @@
 // gt/all_objects.txt, gt/gt.txt, gt/homographies.txt). The first byte picks the file; the
 // others of a run are fixed and valid. Bad input must end in InputError, never a crash.
 
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -12,6 +10,7 @@
 #include <string>
 
 #include "fuzz_targets.hpp"
+#include "scratch_dir.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/eval/predictions.hpp"
 #include "uavmot/eval/sequence.hpp"
@@ -37,8 +36,7 @@ void load_sequence_with(const fs::path& dir, const std::string& name, const std:
 
 int eval_files(const uint8_t* data, size_t size) {
   if (size < 1) return 0;
-  static const fs::path dir = fs::temp_directory_path() / ("uavmot_eval_fuzz_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  static const fs::path dir = test_support::fresh_scratch_dir("eval_fuzz");
   const std::string text(reinterpret_cast<const char*>(data) + 1, size - 1);
   const std::string file = (dir / "input").string();
   const std::string tracks = (dir / "tracks.txt").string();

@@ -2,8 +2,6 @@
 // transfer: `uavmot record --recover` (mcap::recover) repairs it, then `uavmot eval --recording`
 // reads the repaired file's tracks (and motion). Each may refuse with InputError; nothing else.
 
-#include <unistd.h>
-
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -11,6 +9,7 @@
 #include <string>
 
 #include "fuzz_targets.hpp"
+#include "scratch_dir.hpp"
 #include "recorded_predictions.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/mcap/recover.hpp"
@@ -19,8 +18,7 @@ namespace uavmot::fuzz {
 
 int recording(const uint8_t* data, size_t size) {
   namespace fs = std::filesystem;
-  static const fs::path dir = fs::temp_directory_path() / ("uavmot_recording_fuzz_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  static const fs::path dir = test_support::fresh_scratch_dir("recording_fuzz");
   const std::string damaged = (dir / "damaged.mcap").string(), repaired = (dir / "repaired.mcap").string();
   std::ofstream(damaged, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data), static_cast<std::streamsize>(size));
   eval::SequenceInfo info;

@@ -13,6 +13,7 @@
 #include "fuzz_targets.hpp"
 #include "recorded_predictions.hpp"
 #include "uavmot/mcap/recover.hpp"
+#include "scratch_dir.hpp"
 
 namespace uavmot::fuzz {
 namespace {
@@ -70,7 +71,7 @@ TEST(FuzzSeeds, RecordingSeedsAreRecordingsEvalReads) {
   const eval::Predictions intact = eval::load_recorded_predictions((dir / "tiny.mcap").string(), "", info);
   EXPECT_EQ(intact.boxes.size(), 3u);
   EXPECT_EQ(intact.homographies.size(), 3u);
-  const fs::path repaired = fs::temp_directory_path() / "uavmot_fuzz_seed_repaired.mcap";
+  const fs::path repaired = test_support::scratch_path("fuzz_seed_repaired.mcap");
   const mcap::RecoverResult recovered = mcap::recover((dir / "tiny_crashed_no_summary.partial").string(), repaired.string());
   EXPECT_GE(recovered.messages, 2u);
   EXPECT_FALSE(eval::load_recorded_predictions(repaired.string(), "", info).boxes.empty());

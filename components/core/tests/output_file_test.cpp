@@ -13,16 +13,12 @@
 #include "uavmot/core/durable_file.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/core/result_files.hpp"
+#include "scratch_dir.hpp"
 
 namespace uavmot {
 namespace {
 
-std::filesystem::path fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::temp_directory_path() / name;
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+std::filesystem::path fresh_dir(const std::string& name) { return test_support::fresh_scratch_dir(name); }
 
 std::string read_all(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include "uavmot/core/result_files.hpp"
+#include "scratch_dir.hpp"
 
 namespace uavmot {
 namespace {
@@ -24,7 +25,7 @@ std::string read_all(const fs::path& path) {
 }
 
 fs::path fresh(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("uavmot_resume_test_" + name);
+  const fs::path dir = test_support::scratch_path("resume_" + name);
   fs::remove_all(dir);
   return dir;
 }

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+#include "scratch_dir.hpp"
 
 namespace uavmot {
 namespace {
@@ -17,7 +18,7 @@ std::string read_all(const std::filesystem::path& path) {
 }
 
 TEST(ResultFiles, WritesMotChallengeTracksOfConfirmedTracksOnly) {
-  const auto dir = std::filesystem::temp_directory_path() / "uavmot_result_files_test";
+  const auto dir = test_support::scratch_path("result_files");
   std::filesystem::remove_all(dir);
   {
     ResultFilesWriter writer({dir.string(), 25.0, 0.5, true, true});
@@ -52,7 +53,7 @@ TEST(ResultFiles, WritesMotChallengeTracksOfConfirmedTracksOnly) {
 // With the input's ground geometry, tracks_obb.csv gets each box centre's lat,lon (empty where the
 // frame has no mapping), and summary.json says where the GSD came from and what metadata was read.
 TEST(ResultFiles, LatLonColumnsAndMetadataSummary) {
-  const auto dir = std::filesystem::temp_directory_path() / "uavmot_result_files_latlon_test";
+  const auto dir = test_support::scratch_path("result_files_latlon");
   std::filesystem::remove_all(dir);
   {
     ResultFilesOptions options{dir.string(), 25.0, 0.0, false, false};

@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "uavmot/core/result_files.hpp"
+#include "scratch_dir.hpp"
 
 namespace uavmot::dds {
 namespace {
@@ -98,7 +99,7 @@ std::string read_all(const std::filesystem::path& path) {
 // The ground writes what crossed the link; `uavmot process` writes the chain's own values. With
 // numbers that sit on rounding edges (xxx.xxx5, -0.0004), the files must still be the same bytes.
 TEST(DownlinkConvert, GroundFilesAreByteIdenticalToTheInProcessWriter) {
-  const auto root = std::filesystem::temp_directory_path() / "uavmot_downlink_files_test";
+  const auto root = test_support::scratch_path("downlink_files");
   std::filesystem::remove_all(root);
   ResultFilesOptions options{(root / "process").string(), 25.0, 0.35, false, true, false};
   std::mt19937_64 rng(3);

@@ -6,14 +6,14 @@
 #include <gtest/gtest.h>
 
 #include "uavmot/core/error.hpp"
+#include "scratch_dir.hpp"
 
 namespace uavmot::geo {
 namespace {
 namespace fs = std::filesystem;
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("uavmot_clif_pos_sequence_" + name);
-  fs::remove_all(dir);
+  const fs::path dir = test_support::fresh_scratch_dir("clif_pos_sequence_" + name);
   fs::create_directories(dir / "jpg");
   fs::create_directories(dir / "pos");
   return dir;

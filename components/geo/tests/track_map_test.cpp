@@ -1,6 +1,7 @@
 #include "uavmot/geo/track_map.hpp"
 
 #include <gtest/gtest.h>
+#include "scratch_dir.hpp"
 
 namespace uavmot::geo {
 namespace {
@@ -33,7 +34,7 @@ TEST(TrackMapRecorder, KeepsConfirmedCentresByIdAndFrame) {
 
 TEST(TrackMapRecorder, WritesAnEmptyCollectionWithoutTracks) {
   TrackMapRecorder recorder;
-  const auto path = std::filesystem::temp_directory_path() / "uavmot_track_map_empty.geojson";
+  const auto path = test_support::scratch_path("track_map_empty.geojson");
   const GeoJsonCounts counts = recorder.write(path, {}, 25.0);
   EXPECT_EQ(counts.features, 0u);
   EXPECT_TRUE(std::filesystem::exists(path));

@@ -6,12 +6,13 @@
 #include <gtest/gtest.h>
 
 #include "uavmot/core/error.hpp"
+#include "scratch_dir.hpp"
 
 namespace uavmot::launch {
 namespace {
 
 std::string write_profile(const std::string& name, const std::string& text) {
-  const auto path = std::filesystem::temp_directory_path() / name;
+  const auto path = test_support::scratch_path(name);
   std::ofstream(path) << text;
   return path.string();
 }

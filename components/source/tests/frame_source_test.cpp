@@ -10,6 +10,7 @@
 #include "uavmot/core/error.hpp"
 #include "uavmot/source/frame_prefetcher.hpp"
 #include "uavmot/source/sequence_info.hpp"
+#include "scratch_dir.hpp"
 
 namespace uavmot::source {
 namespace {
@@ -19,10 +20,7 @@ const fs::path kClif = fs::path(UAVMOT_DATA_DIR) / "clif2007" / "jpg";
 const fs::path kAphillMp4 = fs::path(UAVMOT_DATA_DIR) / "aphill" / "aphill_240_1fps_crf32.mp4";
 
 fs::path fresh_dir(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("uavmot_source_test_" + name);
-  fs::remove_all(dir);
-  fs::create_directories(dir);
-  return dir;
+  return test_support::fresh_scratch_dir("source_" + name);
 }
 
 std::string error_of(const std::function<void()>& f) {
