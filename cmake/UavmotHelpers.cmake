@@ -15,7 +15,7 @@ endfunction()
 # Sanitizers apply to every target (generated IDL code included); tools/sanitize.sh and
 # tools/fuzz.sh set them. UBSan aborts at its first finding instead of printing and carrying on,
 # so a test with undefined behaviour fails. -g1 (line tables only) keeps file:line in every report
-# and builds faster than -g: CI builds these from a cold cache within its time limit.
+# and builds faster than -g, which counts when CI finds them missing from its cache.
 if(UAVMOT_SANITIZE)
   add_compile_options(-fsanitize=${UAVMOT_SANITIZE} -fno-omit-frame-pointer -g1)
   if(UAVMOT_SANITIZE MATCHES "undefined")

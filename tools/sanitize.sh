@@ -18,7 +18,7 @@ export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$(cd .. && pwd)}
 export CCACHE_NOHASHDIR=${CCACHE_NOHASHDIR:-1}
 # -O1 as the sanitizers' documentation suggests: faster to build than -O2/-O3, still fast enough to run.
 # -g1 (line tables, no variables): reports keep file:line, while the build is cheaper than with -g, which
-# matters because CI builds this from a cold cache on a clean machine within its time limit.
+# counts when CI, limited to 90 minutes, finds these objects missing from its cache.
 common=(-G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" -DUAVMOT_WERROR=ON
         -DUAVMOT_BUILD_BENCHMARKS=OFF)
 
@@ -27,7 +27,7 @@ common=(-G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo "-DCMAKE_CXX_FLAGS_RELWITHDEB
 # fault_injection and watchdog assert recovery times and health silence in seconds, which the
 # instrumented processes (2-5x slower) do not keep; the restart paths they drive run under ASan in
 # tracker_restart, tracker_resume and sink_faults.
-# The four long accuracy tests (150-250 frames of 1-3 chains each, 20 min under ASan) run the same code
+# The four long accuracy tests (150-250 frames of 1-3 chains each, 19 min of test time under ASan) run the same code
 # as the shorter scenario, unit and integration tests that do run here; left out so the whole CI run
 # fits its 90 minutes (docs/developing.md, "CI stages").
 not_here='^(compose_integration_test|fault_injection_integration_test|watchdog_integration_test'
