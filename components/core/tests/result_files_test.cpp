@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include <gtest/gtest.h>
+
 #include "scratch_dir.hpp"
 
 namespace uavmot {

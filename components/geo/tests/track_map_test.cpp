@@ -1,6 +1,7 @@
 #include "uavmot/geo/track_map.hpp"
 
 #include <gtest/gtest.h>
+
 #include "scratch_dir.hpp"
 
 namespace uavmot::geo {
