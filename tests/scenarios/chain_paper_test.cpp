@@ -4,6 +4,7 @@
 // figures are held at the level the seeds 1-3 reach (mean, and the worst seed for the correct
 // rate), with a small margin, so a change that costs accuracy on any of them fails here. Issue 18's
 // targets (>= 95 % correct on every seed) are not met yet; docs/tracking.md lists the gap.
+// The `small` preset (8 x 3 px cars at 0.6 m/px) is held the same way below.
 
 #include <gtest/gtest.h>
 
@@ -11,6 +12,8 @@
 #include <chrono>
 #include <cstdio>
 #include <fstream>
+#include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
@@ -31,10 +34,13 @@ int run(const std::vector<std::string>& argv, const std::string& log) {
   return code.value_or(-1);
 }
 
-nlohmann::json score_seed(int seed) {
-  const std::string dir = fresh_dir("chain_paper_scenario_seed" + std::to_string(seed));
-  const std::string seq = dir + "/paper", out = dir + "/out";
-  EXPECT_EQ(run({binary("uavmot"), "sim", "--preset", "paper", "--seed", std::to_string(seed), "--out", seq, "--quiet"}, dir + "/sim.log"), 0);
+// frames 0: the preset's own length.
+nlohmann::json score_seed(int seed, const std::string& preset = "paper", int frames = 0) {
+  const std::string dir = fresh_dir("chain_" + preset + "_scenario_seed" + std::to_string(seed));
+  const std::string seq = dir + "/" + preset, out = dir + "/out";
+  std::vector<std::string> sim = {binary("uavmot"), "sim", "--preset", preset, "--seed", std::to_string(seed), "--out", seq, "--quiet"};
+  if (frames > 0) sim.insert(sim.end(), {"--frames", std::to_string(frames)});
+  EXPECT_EQ(run(sim, dir + "/sim.log"), 0);
   EXPECT_EQ(run({binary("uavmot"), "process", seq, "--out", out, "--quiet"}, dir + "/process.log"), 0);
   EXPECT_EQ(run({binary("uavmot"), "eval", "--seq", seq, "--pred", out + "/tracks.txt", "--obb", out + "/tracks_obb.csv",
                  "--json", out + "/eval.json"},
@@ -95,6 +101,29 @@ TEST(ChainPaperScenario, ThreeSeedsHoldTheirCorrectRatePrecisionAndFalseAlarms) 
   EXPECT_LE(el, 2.9);
   EXPECT_LE(fa, 1.6);
   EXPECT_GE(mota, 0.89);
+}
+
+// The automatic LK window (docs/motion.md, `lk_window_px`) is 7 px at 0.6 m/px: with the 11 px
+// window of the other presets these seeds gave 60.37 / 64.37 / 64.93 % correct and 6.50 / 5.61 /
+// 8.41 false alarms per frame (mean 63.2 %, 6.84); with 7 px 66.14 / 68.76 / 68.92 %, 4.55 / 5.09
+// / 6.00 (mean 67.9 %, 5.21). Issue 18's target for `small` (>= 80 %) is not met yet.
+TEST(ChainSmallScenario, ThreeSeedsOfEightPixelCarsHoldTheirCorrectRateAndFalseAlarms) {
+  const std::vector<int> seeds = {1, 2, 3};
+  double correct = 0, worst_correct = 1, fa = 0;
+  for (const int seed : seeds) {
+    const auto e = score_seed(seed, "small", 150);
+    const auto& c = e.at("completeness");
+    ASSERT_GT(c.at("instances").get<int>(), 5000) << "seed " << seed;
+    const double rate = c.at("correct_rate").get<double>();
+    const double per_frame = e.at("false_alarms").at("per_frame").get<double>();
+    std::printf("small seed %d: correct %.2f %%, %.2f false alarms per frame\n", seed, 100 * rate, per_frame);
+    correct += rate / seeds.size();
+    worst_correct = std::min(worst_correct, rate);
+    fa += per_frame / seeds.size();
+  }
+  EXPECT_GE(correct, 0.665);
+  EXPECT_GE(worst_correct, 0.65);
+  EXPECT_LE(fa, 5.6);
 }
 
 }  // namespace

@@ -70,17 +70,7 @@ PreparedFrame& PreparedFrame::operator=(PreparedFrame&&) noexcept = default;
 class MotionEstimator::Impl {
  public:
   Impl(MotionOptions options, SceneInfo scene)
-      : options_(std::move(options)), scene_(scene), detector_(options_), parallax_(options_) {
-    validate(options_);
-    if (options_.min_moving_speed_mps > 0.0) {
-      if (!(scene_.gsd_m > 0.0) || !(scene_.fps > 0.0)) {
-        throw InputError("motion options: min_moving_speed_mps needs a scene with gsd_m > 0 and fps > 0");
-      }
-      // One threshold in px/frame for the classifier: the stricter of the two.
-      const double from_ground = options_.min_moving_speed_mps / (scene_.gsd_m * scene_.fps);
-      options_.min_moving_speed_px = std::max(options_.min_moving_speed_px, from_ground);
-    }
-  }
+      : options_(resolved_for_scene(std::move(options), scene)), scene_(scene), detector_(options_), parallax_(options_) {}
 
   // `prepared`: the frame's grey image and pyramid built ahead (the pyramid is swapped in), or null.
   MotionEstimate process(const Frame& frame, PreparedFrame::Data* prepared);

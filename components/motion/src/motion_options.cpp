@@ -1,5 +1,7 @@
 #include "uavmot/motion/motion_options.hpp"
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -24,7 +26,9 @@ MotionOptions load_motion_options(const ConfigNode& node) {
   node.expect_only(keys);
   for_each_motion_option(o, [&](const char* key, auto& value, const auto& limits) { read_option(node, key, value, limits); });
   if (o.cell_size_px > 0 && o.cell_size_px < 8) node.fail("cell_size_px", "must be 0 (automatic) or >= 8");
-  if (o.lk_window_px % 2 == 0) node.fail("lk_window_px", "must be odd, got " + std::to_string(o.lk_window_px));
+  if (o.lk_window_px != 0 && (o.lk_window_px < 5 || o.lk_window_px % 2 == 0)) {
+    node.fail("lk_window_px", "must be 0 (automatic) or odd and >= 5, got " + std::to_string(o.lk_window_px));
+  }
   if (o.corner_block_size % 2 == 0) {
     node.fail("corner_block_size", "must be odd, got " + std::to_string(o.corner_block_size));
   }
@@ -54,7 +58,8 @@ void validate(const MotionOptions& o) {
   require(o.empty_cell_retry_frames >= 1, "empty_cell_retry_frames must be >= 1");
   require(o.sparse_features_fraction >= 0.0 && o.sparse_features_fraction <= 1.0, "sparse_features_fraction must be in [0, 1]");
   require(o.sparse_response_factor >= 0.0 && o.sparse_response_factor <= 1.0, "sparse_response_factor must be in [0, 1]");
-  require(o.lk_window_px >= 5 && o.lk_window_px % 2 == 1, "lk_window_px must be odd and >= 5");
+  require(o.lk_window_px == 0 || (o.lk_window_px >= 5 && o.lk_window_px % 2 == 1),
+          "lk_window_px must be 0 (automatic) or odd and >= 5");
   require(o.pyramid_levels >= 0 && o.pyramid_levels <= 6, "pyramid_levels must be in [0, 6]");
   require(o.backward_levels >= 0 && o.backward_levels <= o.pyramid_levels,
           "backward_levels must be in [0, pyramid_levels]");
@@ -101,6 +106,32 @@ void validate(const MotionOptions& o) {
   require(o.parallax_edge_radius_px >= 0.0 && o.parallax_edge_speed_factor >= 0.0,
           "parallax_edge_radius_px and parallax_edge_speed_factor must be >= 0");
   require(o.parallax_edge_min_supporters >= 1, "parallax_edge_min_supporters must be >= 1");
+}
+
+int automatic_lk_window_px(const SceneInfo& scene) {
+  if (!(scene.gsd_m > 0.0) || !(scene.vehicle_length_m > 0.0)) {
+    throw InputError("motion options: lk_window_px 0 (automatic) needs a scene with gsd_m > 0 and vehicle_length_m > 0");
+  }
+  // 0.85 keeps 11 down to 12 px cars (0.38 m/px): at 0.35 m/px a 9 px window gained 0.3-1 point
+  // in the simulator but lost the real 1-fps car of aphill (docs/motion.md); at 0.6 m/px (8 px
+  // cars) 7 beats 11 by 4-5 points.
+  const double target = 0.85 * scene.metres_to_px(scene.vehicle_length_m);
+  const double odd = 2.0 * std::round((target - 1.0) / 2.0) + 1.0;
+  return static_cast<int>(std::clamp(odd, 7.0, 11.0));
+}
+
+MotionOptions resolved_for_scene(MotionOptions o, const SceneInfo& scene) {
+  validate(o);
+  if (o.lk_window_px == 0) o.lk_window_px = automatic_lk_window_px(scene);
+  if (o.min_moving_speed_mps > 0.0) {
+    if (!(scene.gsd_m > 0.0) || !(scene.fps > 0.0)) {
+      throw InputError("motion options: min_moving_speed_mps needs a scene with gsd_m > 0 and fps > 0");
+    }
+    // One threshold in px/frame for the classifier: the stricter of the two.
+    const double from_ground = o.min_moving_speed_mps / (scene.gsd_m * scene.fps);
+    o.min_moving_speed_px = std::max(o.min_moving_speed_px, from_ground);
+  }
+  return o;
 }
 
 }  // namespace uavmot::motion

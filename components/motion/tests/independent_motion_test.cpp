@@ -25,7 +25,7 @@ struct Counts {
 Counts classify(const testing::WarpedSequence& sequence, const std::vector<MotionEstimate>& estimates, int warm_up,
                 int min_age) {
   Counts c;
-  const double outer_margin = MotionOptions{}.lk_window_px / 2 + 1.0;
+  const double outer_margin = resolved_for_scene(MotionOptions{}, SceneInfo{}).lk_window_px / 2 + 1.0;  // test::run's scene
   for (const auto& e : estimates) {
     const int k = static_cast<int>(e.frame_index);
     if (k <= warm_up) continue;

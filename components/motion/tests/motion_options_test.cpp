@@ -43,6 +43,7 @@ void expect_error(const std::string& yaml, const std::string& fragment) {
 TEST(MotionOptions, RejectsBadValuesNamingTheKey) {
   expect_error("max_featurs: 5\n", "max_features");
   expect_error("lk_window_px: 12\n", "lk_window_px");
+  expect_error("lk_window_px: 3\n", "lk_window_px");
   expect_error("pyramid_levels: 9\n", "pyramid_levels");
   expect_error("robust_method: lmeds\n", "robust_method");
   expect_error("min_track_frames: 20\nhistory_frames: 10\n", "min_track_frames");
@@ -152,6 +153,31 @@ TEST(MotionOptions, ChangingAnyOptionRefusesASavedState) {
       EXPECT_NE(std::string(e.what()).find("saved with other motion options"), std::string::npos) << keys[i] << ": " << e.what();
     }
   }
+}
+
+SceneInfo scene_at(double gsd_m) {
+  SceneInfo scene;
+  scene.gsd_m = gsd_m;
+  return scene;
+}
+
+// lk_window_px 0: about 0.85 of a 4.5 m car in pixels, odd, within [7, 11].
+TEST(MotionOptions, AutomaticLkWindowFollowsTheCarsSizeInPixels) {
+  EXPECT_EQ(MotionOptions{}.lk_window_px, 0);
+  EXPECT_EQ(automatic_lk_window_px(scene_at(0.6)), 7);    // `small`: 7.5 px cars
+  EXPECT_EQ(automatic_lk_window_px(scene_at(0.45)), 9);   // 10 px
+  EXPECT_EQ(automatic_lk_window_px(scene_at(0.35)), 11);  // `paper` and the default scene: 12.9 px
+  EXPECT_EQ(automatic_lk_window_px(scene_at(0.3)), 11);   // `hd`: 15 px
+  EXPECT_EQ(automatic_lk_window_px(scene_at(0.05)), 11);  // FMV at low altitude: 90 px, capped
+  EXPECT_EQ(automatic_lk_window_px(scene_at(5.0)), 7);    // sub-pixel cars: the floor
+  EXPECT_THROW(automatic_lk_window_px(scene_at(0.0)), InputError);
+
+  // The estimator runs with, and reports, the resolved window; an explicit one is kept.
+  EXPECT_EQ(MotionEstimator(MotionOptions{}, scene_at(0.6)).options().lk_window_px, 7);
+  MotionOptions fixed;
+  fixed.lk_window_px = 13;
+  EXPECT_EQ(MotionEstimator(fixed, scene_at(0.6)).options().lk_window_px, 13);
+  EXPECT_EQ(load_motion_options(ConfigNode::load_string("lk_window_px: 0\n", "m.yaml")).lk_window_px, 0);
 }
 
 TEST(MotionOptions, EstimatorRejectsInconsistentOptions) {

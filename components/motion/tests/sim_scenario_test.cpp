@@ -55,7 +55,7 @@ ScenarioScore run_preset(const std::string& preset, int frames, double recall_sp
   // A tracking window that straddles a vehicle border or its shadow (about 2.3 px beyond the
   // footprint in the presets) sees both the vehicle and the ground: features there are
   // ambiguous and left out of the counts.
-  const double band = options.lk_window_px / 2 + 4.0;
+  const double band = estimator.options().lk_window_px / 2 + 4.0;  // the window for this scene
   ScenarioScore s;
   sim::SimFrame frame;
   while (simulator.next(frame)) {

@@ -5,6 +5,7 @@
 #include <initializer_list>
 #include <string>
 
+#include "uavmot/core/scene_info.hpp"
 #include "uavmot/core/yaml_config.hpp"
 
 namespace uavmot::motion {
@@ -34,7 +35,10 @@ struct MotionOptions {
   double change_min_grey = 12.0;        // ... and above this many grey levels
 
   // --- Pyramidal Lucas-Kanade with forward-backward check ----------------------------------
-  int lk_window_px = 11;            // odd window side
+  // Odd window side, or 0 (the default): from the scene, 11 unless cars are shorter than about
+  // 12 px, then smaller (automatic_lk_window_px), so that a small car's corners are not tracked
+  // with the ground around them.
+  int lk_window_px = 0;
   int pyramid_levels = 4;           // levels above the full-resolution image (maxLevel)
   int lk_max_iterations = 20;
   double lk_epsilon_px = 0.01;      // stop when an update is smaller than this
@@ -139,7 +143,7 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("change_features_per_cell", o.change_features_per_cell, Range<int>{1, 64});
   visit("change_threshold_sigma", o.change_threshold_sigma, Range<double>{0.0, 100.0});
   visit("change_min_grey", o.change_min_grey, Range<double>{0.0, 255.0});
-  visit("lk_window_px", o.lk_window_px, Range<int>{5, 63});
+  visit("lk_window_px", o.lk_window_px, Range<int>{0, 63});  // 0 or odd >= 5: load_motion_options
   visit("pyramid_levels", o.pyramid_levels, Range<int>{0, 6});
   visit("lk_max_iterations", o.lk_max_iterations, Range<int>{1, 200});
   visit("lk_epsilon_px", o.lk_epsilon_px, Range<double>{1e-5, 1.0});
@@ -204,5 +208,14 @@ MotionOptions load_motion_options(const ConfigNode& node);
 
 // Throws uavmot::InputError when options contradict each other (e.g. an even LK window).
 void validate(const MotionOptions& options);
+
+// The LK window that lk_window_px = 0 stands for in `scene`: the odd number nearest to
+// 0.85 x the car's length in pixels, clamped to [7, 11] (docs/motion.md): 11 at 0.38 m/px and
+// finer, 9 at 0.45 m/px, 7 at 0.6 m/px (8 px cars).
+int automatic_lk_window_px(const SceneInfo& scene);
+
+// `options` with every scene-dependent value resolved for `scene` (lk_window_px = 0); what a
+// MotionEstimator runs with and reports as options().
+MotionOptions resolved_for_scene(MotionOptions options, const SceneInfo& scene);
 
 }  // namespace uavmot::motion
