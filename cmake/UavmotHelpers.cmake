@@ -57,13 +57,12 @@ function(uavmot_add_gtest name)
     return()
   endif()
   add_executable(${name} ${ARG_SOURCES})
-  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main GTest::gmock)
+  # uavmot_build_paths: the source, build and data folders (uavmot/build_paths/build_paths.hpp). Not
+  # compile definitions here: an absolute path on a test's command line differs between clones and
+  # would make each of its objects miss ccache in every CI clone (components/build_paths).
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} uavmot_build_paths GTest::gtest GTest::gtest_main GTest::gmock)
   # tests/support: helpers every test may use (scratch_dir.hpp: where tests write their files).
   target_include_directories(${name} PRIVATE ${CMAKE_SOURCE_DIR}/tests/support)
-  target_compile_definitions(${name} PRIVATE
-    UAVMOT_SOURCE_DIR="${CMAKE_SOURCE_DIR}"
-    UAVMOT_BINARY_DIR="${CMAKE_BINARY_DIR}"
-    UAVMOT_DATA_DIR="${UAVMOT_DATA_DIR}")
   uavmot_set_warnings(${name})
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
   if(NOT ARG_TIMEOUT)

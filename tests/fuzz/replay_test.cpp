@@ -12,6 +12,7 @@
 
 #include "fuzz_targets.hpp"
 #include "recorded_predictions.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/mcap/recover.hpp"
 #include "scratch_dir.hpp"
 
@@ -21,6 +22,8 @@ namespace {
 namespace fs = std::filesystem;
 using Target = int (*)(const uint8_t*, size_t);
 
+fs::path fuzz_dir() { return fs::path(build_paths::source_dir()) / "tests" / "fuzz"; }
+
 std::vector<uint8_t> read_bytes(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
@@ -28,7 +31,7 @@ std::vector<uint8_t> read_bytes(const fs::path& path) {
 
 // Returns how many files it ran.
 int replay(const std::string& name, Target target, const std::string& folder) {
-  const fs::path dir = fs::path(UAVMOT_FUZZ_DIR) / folder / name;
+  const fs::path dir = fuzz_dir() / folder / name;
   if (!fs::exists(dir)) return 0;
   int count = 0;
   for (const auto& entry : fs::directory_iterator(dir)) {
@@ -63,7 +66,7 @@ INSTANTIATE_TEST_SUITE_P(Targets, FuzzReplay,
 // The recording seeds must reach the whole path, not stop at the first check: the intact one scores
 // as a recording of three frames, and the crashed one recovers to every complete chunk.
 TEST(FuzzSeeds, RecordingSeedsAreRecordingsEvalReads) {
-  const fs::path dir = fs::path(UAVMOT_FUZZ_DIR) / "corpus/recording";
+  const fs::path dir = fuzz_dir() / "corpus/recording";
   eval::SequenceInfo info;
   info.length = 10;
   info.width = 640;

@@ -29,6 +29,7 @@
 #include <gtest/gtest.h>
 
 #include "child_process.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 
 namespace uavmot {
 namespace {
@@ -37,8 +38,8 @@ using testing::ChildProcess;
 using testing::read_file;
 namespace fs = std::filesystem;
 
-const std::string kAirProfile = std::string(UAVMOT_SOURCE_DIR) + "/bringup/air.yaml";
-const std::string kGroundProfile = std::string(UAVMOT_SOURCE_DIR) + "/bringup/ground.yaml";
+const std::string kAirProfile = build_paths::source_dir() + "/bringup/air.yaml";
+const std::string kGroundProfile = build_paths::source_dir() + "/bringup/ground.yaml";
 constexpr const char* kIp = "/usr/bin/ip";
 constexpr int kFrames = 80;         // first UAV's sequence
 constexpr int kSecondFrames = 60;   // second UAV's sequence (another seed)
@@ -460,14 +461,14 @@ TEST_F(AirGround, DiscoveryServerReplacesBlockedMulticastAndSurvivesARestart) {
 // permission, or with permissions the CA did not sign can neither read nor inject.
 TEST_F(AirGround, SecurityEncryptsTheLinkAndKeepsOutsidersOutOfTheGroundStation) {
   const std::string security = root_ + "/security";
-  ChildProcess make({"/bin/sh", std::string(UAVMOT_SOURCE_DIR) + "/tools/make_security.sh", security}, root_ + "/make_security.log");
+  ChildProcess make({"/bin/sh", build_paths::source_dir() + "/tools/make_security.sh", security}, root_ + "/make_security.log");
   ASSERT_EQ(make.wait(std::chrono::seconds(60)), 0) << make.log();
   // A rogue: the real sink's certificate, with permissions that let it publish everything (every
   // publish criterion, health's partitioned one included, made "*"), signed by a CA of its own.
   // Its own Fast DDS accepts them; the ground must not.
   const std::string rogue = root_ + "/security_rogue";
   ChildProcess make_rogue({"/bin/sh", "-c",
-                           "set -e; sh " + std::string(UAVMOT_SOURCE_DIR) + "/tools/make_security.sh " + rogue + " >/dev/null; cd " + rogue +
+                           "set -e; sh " + build_paths::source_dir() + "/tools/make_security.sh " + rogue + " >/dev/null; cd " + rogue +
                                "; sed 's|<publish>.*</publish>|<publish><topics><topic>*</topic></topics></publish>|' "
                                "permissions.xml > all.xml; openssl smime -sign -in all.xml -text -out all.smime -signer ca.pem -inkey ca.key; "
                                "sed -e 's|" + rogue + "/sink.pem|" + security + "/sink.pem|' -e 's|" + rogue + "/sink.key|" + security +
@@ -488,7 +489,7 @@ TEST_F(AirGround, SecurityEncryptsTheLinkAndKeepsOutsidersOutOfTheGroundStation)
     return in_ground(name, env, {binary("uavmot-sink"), "--downlink", "--out", root_ + "/" + name});
   };
   auto injector = [&](const std::string& name, const std::map<std::string, std::string>& env) {
-    return in_ground(name, env, {std::string(UAVMOT_BINARY_DIR) + "/tests/uavmot-test-inject", "--seconds", "40",
+    return in_ground(name, env, {build_paths::binary_dir() + "/tests/uavmot-test-inject", "--seconds", "40",
                                  "--frames", std::to_string(kFrames), "--mode", "live"});
   };
   // Readers: no certificate at all (the plain profiles), and the source's identity, which may read only health.

@@ -12,6 +12,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "child_process.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/mcap/reader.hpp"
 
 namespace uavmot {
@@ -21,7 +22,7 @@ using testing::ChildProcess;
 using testing::read_file;
 namespace fs = std::filesystem;
 
-const std::string kProfile = std::string(UAVMOT_SOURCE_DIR) + "/bringup/local.yaml";
+const std::string kProfile = build_paths::source_dir() + "/bringup/local.yaml";
 
 class ChainLaunch : public ::testing::Test {
  protected:
@@ -69,7 +70,7 @@ TEST_F(ChainLaunch, LosslessTracksAreByteIdenticalToInProcess) {
 TEST_F(ChainLaunch, SinkWithMetadataWritesTheSameTracksGeojsonAsProcess) {
   const std::string ts = root_ + "/klv.ts";
   ChildProcess mux({"/usr/bin/ffmpeg", "-nostdin", "-v", "error", "-y", "-framerate", "25", "-i", sequence_ + "/img1/%06d.jpg", "-i",
-                    std::string(UAVMOT_DATA_DIR) + "/aphill/aphill_short.ts", "-map", "0:v", "-map", "1:d", "-c:v", "libx264",
+                    build_paths::data_dir() + "/aphill/aphill_short.ts", "-map", "0:v", "-map", "1:d", "-c:v", "libx264",
                     "-preset", "veryfast", "-pix_fmt", "yuv420p", "-c:d", "copy", "-f", "mpegts", ts},
                    root_ + "/mux.log");
   ASSERT_EQ(mux.wait(std::chrono::seconds(120)), 0) << mux.log();

@@ -13,6 +13,7 @@
 #include <gtest/gtest.h>
 
 #include "child_process.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 
 namespace uavmot {
 namespace {
@@ -22,7 +23,7 @@ using testing::read_file;
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-const std::string kDocker = std::string(UAVMOT_SOURCE_DIR) + "/docker";
+const std::string kDocker = build_paths::source_dir() + "/docker";
 const std::string kProject = "uavmotcompose";
 constexpr int kFrames = 80;
 
@@ -80,7 +81,7 @@ TEST_F(Compose, AirAndGroundContainersOnSeparateNetworksDeliverTheResultsToTheGr
 // selected by qos_dir): the same results, and both containers had the material.
 TEST_F(Compose, WithSecurityOnTheContainersDeliverTheSameResults) {
   const std::string security = root_ + "/security";
-  ASSERT_EQ(run({"/bin/sh", std::string(UAVMOT_SOURCE_DIR) + "/tools/make_security.sh", security}, root_ + "/make_security.log",
+  ASSERT_EQ(run({"/bin/sh", build_paths::source_dir() + "/tools/make_security.sh", security}, root_ + "/make_security.log",
                 std::chrono::seconds(60)),
             0)
       << read_file(root_ + "/make_security.log");
@@ -112,7 +113,7 @@ void Compose::run_and_check() {
 
   // Images: the base is reused when its package list is unchanged; the first build takes minutes.
   auto start = Clock::now();
-  ASSERT_EQ(run({"/bin/sh", kDocker + "/build_image.sh", UAVMOT_BINARY_DIR}, root_ + "/build_image.log", std::chrono::seconds(1500), env_), 0)
+  ASSERT_EQ(run({"/bin/sh", kDocker + "/build_image.sh", build_paths::binary_dir()}, root_ + "/build_image.log", std::chrono::seconds(1500), env_), 0)
       << read_file(root_ + "/build_image.log");
   const double build_s = seconds_since(start);
 

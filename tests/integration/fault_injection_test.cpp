@@ -23,6 +23,7 @@
 
 #include "child_process.hpp"
 #include "launched_chain.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 
 namespace uavmot {
 namespace {
@@ -160,10 +161,10 @@ TEST_P(DownlinkFaultInjection, DownlinkFaultMidRun) {
   const std::string name = "downlink_" + signal_name_of({f, 0});
   const std::string ground_out = root_ + "/" + name + "_ground";
   const std::string link_domain = "domain=" + std::to_string(domain(f.domain));
-  ChildProcess ground({binary("uavmot"), "launch", std::string(UAVMOT_SOURCE_DIR) + "/bringup/ground.yaml", "--input",
+  ChildProcess ground({binary("uavmot"), "launch", build_paths::source_dir() + "/bringup/ground.yaml", "--input",
                        sequence_, "--out", ground_out, "--set", link_domain},
                       root_ + "/" + name + "_ground.log");
-  ChildProcess air({binary("uavmot"), "launch", std::string(UAVMOT_SOURCE_DIR) + "/bringup/air.yaml", "--input", sequence_,
+  ChildProcess air({binary("uavmot"), "launch", build_paths::source_dir() + "/bringup/air.yaml", "--input", sequence_,
                     "--out", root_ + "/" + name + "_air", "--set", link_domain, "--set",
                     "air_domain=" + std::to_string(domain(f.domain + 1)), "--set", "hang_timeout=7"},
                    root_ + "/" + name + "_air.log");

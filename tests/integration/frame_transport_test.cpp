@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "child_process.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/checksum.hpp"
 #include "uavmot/source/frame_source.hpp"
 
@@ -16,7 +17,7 @@ namespace {
 using testing::binary;
 using testing::ChildProcess;
 
-const std::string kClif = std::string(UAVMOT_DATA_DIR) + "/clif2007/jpg";
+const std::string kClif = build_paths::data_dir() + "/clif2007/jpg";
 
 struct ReceivedFrame {
   int64_t index = 0;

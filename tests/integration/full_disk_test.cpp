@@ -18,6 +18,7 @@
 
 #include "child_process.hpp"
 #include "framePubSubTypes.h"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/mcap/reader.hpp"
 #include "uavmot/dds/cdr_sample.hpp"
@@ -119,7 +120,7 @@ TEST_F(FullDisk, SinkFailsNamingTheFileAndKeepsCompleteLines) {
   const std::string sequence = simulate(60);
   ASSERT_FALSE(HasFailure());
   const std::string out = disk_ + "/results";
-  ChildProcess launch({binary("uavmot"), "launch", std::string(UAVMOT_SOURCE_DIR) + "/bringup/local.yaml", "--input",
+  ChildProcess launch({binary("uavmot"), "launch", build_paths::source_dir() + "/bringup/local.yaml", "--input",
                        sequence, "--out", out, "--set", "domain=185", "--grace", "20"},
                       root_ + "/launch.log");
   const auto code = launch.wait(std::chrono::seconds(300));

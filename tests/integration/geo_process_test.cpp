@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "child_process.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/geo/flight_metadata.hpp"
 
 namespace uavmot {
@@ -17,7 +18,7 @@ using testing::binary;
 using testing::ChildProcess;
 using testing::read_file;
 
-const std::string kClip = std::string(UAVMOT_DATA_DIR) + "/aphill/aphill_short.ts";
+const std::string kClip = build_paths::data_dir() + "/aphill/aphill_short.ts";
 
 TEST(GeoProcess, AphillGsdFromKlvInLogAndSummaryAndTracksGeojson) {
   const std::string root = testing::fresh_dir("geo_process");
@@ -75,7 +76,7 @@ TEST(GeoProcess, GsdFlagOverridesKlv) {
 // No GSD from anywhere: one warning that names the default, and gsd_source "default".
 TEST(GeoProcess, NoGsdKnownWarnsOnceWithTheDefault) {
   const std::string root = testing::fresh_dir("geo_process_default");
-  ChildProcess process({binary("uavmot-process"), std::string(UAVMOT_DATA_DIR) + "/aphill/aphill_240_1fps_crf32.mp4", "--out",
+  ChildProcess process({binary("uavmot-process"), build_paths::data_dir() + "/aphill/aphill_240_1fps_crf32.mp4", "--out",
                         root + "/out", "--quiet", "--count", "5"},
                        root + "/process.log");
   ASSERT_EQ(process.wait(std::chrono::seconds(300)), 0) << process.log();
@@ -93,7 +94,7 @@ TEST(GeoProcess, NoGsdKnownWarnsOnceWithTheDefault) {
 // A CLIF folder: the frame rate from the POS GPS times (median step 0.630 s).
 TEST(GeoProcess, ClifFrameRateFromPosRecords) {
   const std::string root = testing::fresh_dir("geo_process_clif");
-  ChildProcess process({binary("uavmot-process"), std::string(UAVMOT_DATA_DIR) + "/clif2007/jpg", "--out", root + "/out", "--quiet",
+  ChildProcess process({binary("uavmot-process"), build_paths::data_dir() + "/clif2007/jpg", "--out", root + "/out", "--quiet",
                         "--count", "3"},
                        root + "/process.log");
   ASSERT_EQ(process.wait(std::chrono::seconds(600)), 0) << process.log();

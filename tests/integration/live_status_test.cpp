@@ -13,13 +13,14 @@
 #include <vector>
 
 #include "child_process.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 
 namespace uavmot {
 namespace {
 using testing::binary;
 using testing::ChildProcess;
 
-const std::string kProfile = std::string(UAVMOT_SOURCE_DIR) + "/bringup/local.yaml";
+const std::string kProfile = build_paths::source_dir() + "/bringup/local.yaml";
 const std::set<std::string> kChain{"source", "motion", "segmentation", "tracking", "sink"};
 
 // The rows of components that are running and really moving frames.

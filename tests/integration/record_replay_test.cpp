@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "child_process.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/mcap/reader.hpp"
 #include "uavmot/dds/cdr_sample.hpp"
 #include "uavmot/record/topic_catalog.hpp"
@@ -92,7 +93,7 @@ class RecordReplay : public ::testing::Test {
 
     // The profile's own recorder: started first and counted by every lossless writer
     // (${readers:TOPIC}), so it misses nothing; the launch stops it with SIGINT at the end.
-    ChildProcess launch({binary("uavmot-launch"), std::string(UAVMOT_SOURCE_DIR) + "/bringup/local.yaml", "--input",
+    ChildProcess launch({binary("uavmot-launch"), build_paths::source_dir() + "/bringup/local.yaml", "--input",
                          sequence_, "--out", root_ + "/chain", "--set", "domain=51", "--set", "record=true"},
                         root_ + "/launch.log");
     ASSERT_EQ(launch.wait(std::chrono::seconds(300)), 0) << launch.log();
@@ -130,7 +131,7 @@ TEST_F(RecordReplay, OfficialMcapReaderReadsAndDecodesTheRecording) {
   }
   const std::string expected_file = root_ + "/expected.json";
   std::ofstream(expected_file) << expected.dump();
-  ChildProcess node({"/bin/bash", std::string(UAVMOT_SOURCE_DIR) + "/tests/mcap_js/check_recording.sh", recording_, expected_file},
+  ChildProcess node({"/bin/bash", build_paths::source_dir() + "/tests/mcap_js/check_recording.sh", recording_, expected_file},
                     root_ + "/check_recording.log");
   EXPECT_EQ(node.wait(std::chrono::seconds(240)), 0) << node.log();
   EXPECT_NE(node.log().find(" 0 failed"), std::string::npos) << node.log();
@@ -202,7 +203,9 @@ TEST_F(RecordReplay, ReplayedMotionAndSegmentationGiveTheRecordedTracks) {
                             "    required: true\n"
                             "  - name: tracking\n"
                             "    command: tracking\n"
-                            "    args: [--config, \"" UAVMOT_SOURCE_DIR "/bringup/chain.yaml\", --gsd, \"${gsd}\", --fps, \"${fps}\","
+                            "    args: [--config, \""
+                         << build_paths::source_dir()
+                         << "/bringup/chain.yaml\", --gsd, \"${gsd}\", --fps, \"${fps}\","
                             " --wait-subscribers, \"1\"]\n"
                             "    stop_on_failure: true\n";
   const std::string out = root_ + "/replayed";
@@ -225,7 +228,7 @@ TEST_F(RecordReplay, ReplayedMotionAndSegmentationGiveTheRecordedTracks) {
 TEST_F(RecordReplay, ProcessReRunsTrackingFromTheRecording) {
   const std::string out = root_ + "/processed";
   ChildProcess process({binary("uavmot-process"), recording_, "--out", out, "--config",
-                        std::string(UAVMOT_SOURCE_DIR) + "/bringup/chain.yaml", "--gsd", gsd_, "--fps", fps_},
+                        build_paths::source_dir() + "/bringup/chain.yaml", "--gsd", gsd_, "--fps", fps_},
                        root_ + "/process.log");
   ASSERT_EQ(process.wait(std::chrono::seconds(120)), 0) << process.log();
   const std::string expected = read_file(root_ + "/chain/tracks.txt");

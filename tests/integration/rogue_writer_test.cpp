@@ -16,6 +16,7 @@
 #include "motionPubSubTypes.h"
 #include "segmentationPubSubTypes.h"
 #include "tracksPubSubTypes.h"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/dds/chain_convert.hpp"
 #include "uavmot/dds/frame_convert.hpp"
 #include "uavmot/dds/participant.hpp"
@@ -60,7 +61,7 @@ TEST(RogueWriter, MalformedSamplesAreCountedAndDroppedWhileTheChainGoesOn) {
   ASSERT_TRUE(tracks->wait_for_matched(1, std::chrono::seconds(30)));   // sink
 
   // Garbage, on every topic.
-  cv::Mat image = cv::imread(std::string(UAVMOT_DATA_DIR) + "/clif2007/jpg/000000-100006.jpg", cv::IMREAD_GRAYSCALE);
+  cv::Mat image = cv::imread(build_paths::data_dir() + "/clif2007/jpg/000000-100006.jpg", cv::IMREAD_GRAYSCALE);
   ASSERT_FALSE(image.empty());
   cv::resize(image, image, {320, 480});
   auto frame_sample = dds::to_msg(Frame{"uav1", 1, 0, image});

@@ -16,6 +16,7 @@
 
 #include "child_process.hpp"
 #include "launched_chain.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 
 namespace uavmot {
 namespace {
@@ -24,7 +25,7 @@ using testing::ChildProcess;
 
 std::string make_security(const std::string& root) {
   const std::string dir = root + "/security";
-  ChildProcess make({"/bin/sh", std::string(UAVMOT_SOURCE_DIR) + "/tools/make_security.sh", dir}, root + "/make_security.log");
+  ChildProcess make({"/bin/sh", build_paths::source_dir() + "/tools/make_security.sh", dir}, root + "/make_security.log");
   EXPECT_EQ(make.wait(std::chrono::seconds(60)), 0) << make.log();
   return dir;
 }
@@ -131,7 +132,7 @@ TEST(SecureHealth, AnotherNodesCertificateCannotReportAsMotion) {
   const int domain = 196;
   auto forge = [&](const std::string& name, const std::string& identity, const std::string& component, const std::string& partition,
                    const std::string& stream) {
-    std::vector<std::string> argv = {std::string(UAVMOT_BINARY_DIR) + "/tests/uavmot-test-forge-health", "--component", component,
+    std::vector<std::string> argv = {build_paths::binary_dir() + "/tests/uavmot-test-forge-health", "--component", component,
                                      "--stream", stream, "--seconds", "30", "--domain", std::to_string(domain)};
     if (!partition.empty()) argv.insert(argv.end(), {"--partition", partition});
     std::map<std::string, std::string> env;

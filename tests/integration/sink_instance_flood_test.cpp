@@ -25,6 +25,7 @@
 #include "motionPubSubTypes.h"
 #include "segmentationPubSubTypes.h"
 #include "tracksPubSubTypes.h"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/dds/chain_convert.hpp"
 #include "uavmot/dds/downlink_convert.hpp"
 #include "uavmot/dds/node_support.hpp"
@@ -125,7 +126,7 @@ struct Rogue {
 std::optional<int> run_chain(const std::string& sequence, const std::string& dir, int domain, Rogue* rogue) {
   std::filesystem::create_directories(dir);
   const std::vector<std::string> common = {"--domain", std::to_string(domain), "--mode", "lossless"};
-  const std::string config = std::string(UAVMOT_SOURCE_DIR) + "/bringup/chain.yaml";
+  const std::string config = build_paths::source_dir() + "/bringup/chain.yaml";
   const std::vector<std::string> algo = {"--config", config, "--gsd", seqinfo(sequence, "gsd"), "--fps", seqinfo(sequence, "frameRate")};
   auto args = [&](std::vector<std::string> a, bool with_algo = true) {
     if (with_algo) a.insert(a.end(), algo.begin(), algo.end());
@@ -188,7 +189,7 @@ size_t lines_of(const std::string& file) {
 TEST(SinkInstanceFlood, GroundProfileFiltersForgedIdsOnTheLink) {
   constexpr int kDomain = 162;
   const std::string root = testing::fresh_dir("sink_instance_flood_ground");
-  ChildProcess ground({binary("uavmot"), "launch", std::string(UAVMOT_SOURCE_DIR) + "/bringup/ground.yaml", "--out",
+  ChildProcess ground({binary("uavmot"), "launch", build_paths::source_dir() + "/bringup/ground.yaml", "--out",
                        root + "/results", "--set", "domain=" + std::to_string(kDomain), "--set", "gsd=0.35", "--set", "fps=25"},
                       root + "/ground.log");
   dds::Participant rogue(rogue_options(kDomain, "udp"));

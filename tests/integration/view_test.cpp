@@ -10,6 +10,7 @@
 #include <opencv2/videoio.hpp>
 
 #include "child_process.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 
 namespace uavmot {
 namespace {
@@ -98,7 +99,7 @@ TEST_F(AnnotatedVideo, ProcessRefusesAnUnwritableVideoPath) {
 
 TEST_F(AnnotatedVideo, ViewNodeDrawsTheDistributedChainIntoAnMp4) {
   const std::string video = root_ + "/view/annotated.mp4";
-  const std::string config = std::string(UAVMOT_SOURCE_DIR) + "/bringup/chain.yaml";
+  const std::string config = build_paths::source_dir() + "/bringup/chain.yaml";
   const std::vector<std::string> dds = {"--domain", "41", "--transport", "local", "--mode", "lossless"};
   auto with = [&](std::vector<std::string> argv) {
     argv.insert(argv.end(), dds.begin(), dds.end());

@@ -18,6 +18,7 @@
 
 #include "child_process.hpp"
 #include "obb_rows.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 
 namespace uavmot {
 namespace {
@@ -37,7 +38,7 @@ struct ClipRun {
 };
 
 ClipRun process(const std::string& clip, const std::string& out) {
-  ChildProcess p({binary("uavmot"), "process", std::string(UAVMOT_DATA_DIR) + "/" + clip, "--out", out, "--quiet"}, out + ".log");
+  ChildProcess p({binary("uavmot"), "process", build_paths::data_dir() + "/" + clip, "--out", out, "--quiet"}, out + ".log");
   const auto code = p.wait(std::chrono::minutes(10));
   EXPECT_TRUE(code.has_value() && *code == 0) << clip << ":\n" << p.log();
   ClipRun run;

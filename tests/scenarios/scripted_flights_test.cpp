@@ -13,6 +13,7 @@
 #include <nlohmann/json.hpp>
 
 #include "child_process.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/eval/predictions.hpp"
 #include "uavmot/eval/sequence.hpp"
 
@@ -60,7 +61,7 @@ int64_t covering_track(const eval::GroundTruthObject& truth, const std::vector<e
 Flight fly(const std::string& name) {
   Flight flight;
   const std::string dir = fresh_dir("scripted_flight_" + name), seq = dir + "/seq", out = dir + "/out";
-  const std::string scenario = std::string(UAVMOT_SOURCE_DIR) + "/tests/scenarios/flights/" + name + ".yaml";
+  const std::string scenario = build_paths::source_dir() + "/tests/scenarios/flights/" + name + ".yaml";
   run({binary("uavmot"), "sim", "--scenario", scenario, "--seed", "1", "--out", seq, "--quiet"}, dir + "/sim.log");
   run({binary("uavmot"), "process", seq, "--out", out, "--quiet"}, dir + "/process.log");
   run({binary("uavmot"), "eval", "--seq", seq, "--pred", out + "/tracks.txt", "--obb", out + "/tracks_obb.csv", "--json",

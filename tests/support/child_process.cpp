@@ -11,6 +11,8 @@
 #include <stdexcept>
 #include <thread>
 
+#include "uavmot/build_paths/build_paths.hpp"
+
 namespace uavmot::testing {
 
 ChildProcess::ChildProcess(std::vector<std::string> argv, std::string log_file, std::map<std::string, std::string> env)
@@ -62,7 +64,7 @@ void ChildProcess::signal(int signum) {
 
 std::string ChildProcess::log() const { return read_file(log_file_); }
 
-std::string binary(const std::string& name) { return std::string(UAVMOT_BINARY_DIR) + "/bin/" + name; }
+std::string binary(const std::string& name) { return build_paths::binary_dir() + "/bin/" + name; }
 
 std::string read_file(const std::string& path) {
   std::ifstream in(path);
@@ -72,7 +74,7 @@ std::string read_file(const std::string& path) {
 }
 
 std::string fresh_dir(const std::string& name) {
-  const auto dir = std::filesystem::path(UAVMOT_BINARY_DIR) / "test_output" / name;
+  const auto dir = std::filesystem::path(build_paths::binary_dir()) / "test_output" / name;
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir.string();

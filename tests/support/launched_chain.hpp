@@ -18,10 +18,11 @@
 #include <opencv2/core/types.hpp>
 
 #include "child_process.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 
 namespace uavmot::testing {
 
-inline const std::string kLocalProfile = std::string(UAVMOT_SOURCE_DIR) + "/bringup/local.yaml";
+inline const std::string kLocalProfile = build_paths::source_dir() + "/bringup/local.yaml";
 
 // The pid of the latest start of `name` in a launcher's log, or -1.
 inline int launched_pid(const std::string& log, const std::string& name) {

@@ -29,6 +29,7 @@
 
 #include "healthPubSubTypes.h"
 #include "tracksPubSubTypes.h"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/app.hpp"
 #include "uavmot/core/logging.hpp"
 #include "uavmot/dds/node_support.hpp"
@@ -71,7 +72,7 @@ struct Component {
 };
 
 int bench_main(int argc, char** argv) {
-  std::string input, profile = std::string(UAVMOT_SOURCE_DIR_FOR_BENCH) + "/bringup/local.yaml", out_dir, json_out;
+  std::string input, profile = build_paths::source_dir() + "/bringup/local.yaml", out_dir, json_out;
   int domain = 48;
   double timeout_s = 600;
   return run_app(argc, argv, "bench-live", "end-to-end latency and CPU time of the chain in live mode", [&](CLI::App& app) {

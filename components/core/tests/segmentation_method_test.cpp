@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
 
 namespace uavmot {
@@ -32,8 +33,9 @@ TEST(SegmentationMethod, ListPositionIsTheWireNumber) {
 // The list is generated from the IDL's enum (cmake/segmentation_methods_from_idl.cmake): read the
 // enum here another way and compare, names upper-cased, in order.
 TEST(SegmentationMethod, ListIsTheIdlEnum) {
-  std::ifstream idl(UAVMOT_SOURCE_DIR "/idl/segmentation.idl");
-  ASSERT_TRUE(idl) << UAVMOT_SOURCE_DIR "/idl/segmentation.idl";
+  const std::string path = build_paths::source_dir() + "/idl/segmentation.idl";
+  std::ifstream idl(path);
+  ASSERT_TRUE(idl) << path;
   std::stringstream text;
   text << idl.rdbuf();
   std::string source = std::regex_replace(text.str(), std::regex(R"(//[^\n]*)"), "");

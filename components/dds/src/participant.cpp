@@ -22,6 +22,7 @@
 #include <unistd.h>
 
 #include "shm_ports.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
 
 namespace uavmot::dds {
@@ -170,10 +171,10 @@ class Participant::RejectLogger : public fdds::DataReaderListener {
 
 std::string default_profiles_file() {
   if (const char* env = std::getenv("UAVMOT_QOS_PROFILES"); env && *env) return env;
-  // Installed layout (bin/ beside share/), then the build tree's copy of bringup/qos.
+  // Installed layout (bin/ beside share/), then bringup/qos of the source tree this was built from.
   const fs::path installed = executable_dir() / ".." / "share" / "uavmot" / "qos" / "uavmot_qos.xml";
   if (fs::is_regular_file(installed)) return fs::weakly_canonical(installed).string();
-  return UAVMOT_DEFAULT_QOS_FILE;
+  return build_paths::source_dir() + "/bringup/qos/uavmot_qos.xml";
 }
 
 Participant::Participant(DdsOptions options) : options_(std::move(options)) {

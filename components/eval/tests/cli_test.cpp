@@ -13,6 +13,7 @@
 
 #include "motionPubSubTypes.h"
 #include "tracksPubSubTypes.h"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/dds/chain_convert.hpp"
 #include "uavmot/mcap/writer.hpp"
 #include "uavmot/dds/cdr_sample.hpp"
@@ -28,7 +29,7 @@ struct ProcessResult {
 
 ProcessResult run_eval(const std::string& args) {
   const fs::path log = fs::temp_directory_path() / ("uavmot_eval_cli_" + std::to_string(::getpid()) + ".log");
-  const std::string cmd = std::string(UAVMOT_BINARY_DIR) + "/bin/uavmot-eval " + args + " >" + log.string() + " 2>&1";
+  const std::string cmd = uavmot::build_paths::binary_dir() + "/bin/uavmot-eval " + args + " >" + log.string() + " 2>&1";
   const int status = std::system(cmd.c_str());
   ProcessResult r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

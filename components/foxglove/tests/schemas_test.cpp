@@ -2,13 +2,14 @@
 
 #include <gtest/gtest.h>
 
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/foxglove/schemas.hpp"
 
 namespace uavmot::foxglove {
 namespace {
 
-const std::string kIdlDir = std::string(UAVMOT_SOURCE_DIR) + "/idl";
+const std::string kIdlDir = build_paths::source_dir() + "/idl";
 
 size_t count(const std::string& text, const std::string& needle) {
   size_t n = 0;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "test_data.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
 
 namespace uavmot::geo {
@@ -41,7 +42,7 @@ TEST(ChainGround, StartOffsetShiftsFrames) {
 }
 
 TEST(ChainGround, NoMetadataNoMapping) {
-  const ChainGround ground(read_flight_metadata(std::string(UAVMOT_DATA_DIR) + "/aphill/aphill_240_1fps_crf32.mp4", {720, 480}, 1.0));
+  const ChainGround ground(read_flight_metadata(build_paths::data_dir() + "/aphill/aphill_240_1fps_crf32.mp4", {720, 480}, 1.0));
   EXPECT_FALSE(ground.has_ground_mapping());
   EXPECT_FALSE(ground.median_gsd_m());
   EXPECT_EQ(ground.summary().standard, "");

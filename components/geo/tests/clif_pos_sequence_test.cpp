@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
 #include "scratch_dir.hpp"
 
@@ -22,7 +23,7 @@ fs::path fresh_dir(const std::string& name) {
 // The median step, independently: over the 250 records, GPS week * 604800 + seconds of week,
 // consecutive differences sorted with `sort -g` and the middle two averaged (awk): 0.630026 s.
 TEST(ClifPosSequence, ClifFolderFrameRateFromGpsTimes) {
-  const auto seq = read_clif_pos_sequence(std::string(UAVMOT_DATA_DIR) + "/clif2007/jpg");
+  const auto seq = read_clif_pos_sequence(build_paths::data_dir() + "/clif2007/jpg");
   ASSERT_TRUE(seq);
   EXPECT_EQ(seq->images, 250u);
   EXPECT_EQ(seq->records.size(), 250u);
@@ -49,8 +50,8 @@ TEST(ClifPosSequence, MissingRecordsAreCountedAndWeeksJoin) {
 }
 
 TEST(ClifPosSequence, NoSiblingPosFolderOrNoRecordsIsNothing) {
-  EXPECT_FALSE(read_clif_pos_sequence(std::string(UAVMOT_DATA_DIR) + "/aphill"));
-  EXPECT_FALSE(read_clif_pos_sequence(std::string(UAVMOT_DATA_DIR) + "/aphill/aphill_short.ts"));
+  EXPECT_FALSE(read_clif_pos_sequence(build_paths::data_dir() + "/aphill"));
+  EXPECT_FALSE(read_clif_pos_sequence(build_paths::data_dir() + "/aphill/aphill_short.ts"));
   const fs::path dir = fresh_dir("empty");
   std::ofstream(dir / "jpg" / "a.jpg") << "x";
   EXPECT_FALSE(read_clif_pos_sequence(dir / "jpg"));

@@ -8,6 +8,7 @@
 
 #include <gtest/gtest.h>
 
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
 
 namespace uavmot::geo {
@@ -15,7 +16,7 @@ namespace {
 
 std::vector<ClifPosRecord> read_all() {
   std::vector<std::filesystem::path> files;
-  for (const auto& e : std::filesystem::directory_iterator(std::string(UAVMOT_DATA_DIR) + "/clif2007/pos")) files.push_back(e.path());
+  for (const auto& e : std::filesystem::directory_iterator(build_paths::data_dir() + "/clif2007/pos")) files.push_back(e.path());
   std::sort(files.begin(), files.end());
   std::vector<ClifPosRecord> records;
   for (const auto& f : files) records.push_back(read_clif_pos_file(f));
@@ -23,7 +24,7 @@ std::vector<ClifPosRecord> read_all() {
 }
 
 TEST(ClifPos, FirstRecord) {
-  const ClifPosRecord r = read_clif_pos_file(std::string(UAVMOT_DATA_DIR) + "/clif2007/pos/000000-100006.txt");
+  const ClifPosRecord r = read_clif_pos_file(build_paths::data_dir() + "/clif2007/pos/000000-100006.txt");
   EXPECT_FALSE(r.source_name);
   EXPECT_DOUBLE_EQ(r.yaw_deg, 344.1953273632474861);
   EXPECT_DOUBLE_EQ(r.latitude_deg, 40.0048617231066572);  // Columbus, Ohio

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "test_data.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
 
 namespace uavmot::geo {
@@ -49,14 +50,14 @@ TEST(FlightMetadata, ExplicitFrameCountAndLatestPacketAtOrBefore) {
 }
 
 TEST(FlightMetadata, OtherInputsGiveAnEmptyResult) {
-  const std::string jpg = std::string(UAVMOT_DATA_DIR) + "/clif2007/jpg/000000-100006.jpg";
+  const std::string jpg = build_paths::data_dir() + "/clif2007/jpg/000000-100006.jpg";
   EXPECT_TRUE(read_flight_metadata(jpg, {668, 1004}, 1.0).empty());
-  EXPECT_TRUE(read_flight_metadata(std::string(UAVMOT_DATA_DIR) + "/aphill/aphill_240_1fps_crf32.mp4", {360, 240}, 1.0).empty());
-  EXPECT_TRUE(read_flight_metadata(std::string(UAVMOT_DATA_DIR) + "/clif2007/jpg", {668, 1004}, 1.0).empty());
+  EXPECT_TRUE(read_flight_metadata(build_paths::data_dir() + "/aphill/aphill_240_1fps_crf32.mp4", {360, 240}, 1.0).empty());
+  EXPECT_TRUE(read_flight_metadata(build_paths::data_dir() + "/clif2007/jpg", {668, 1004}, 1.0).empty());
 }
 
 TEST(FlightMetadata, BadTsAndBadArguments) {
-  const std::string path = std::string(UAVMOT_BINARY_DIR) + "/geo_test_garbage.ts";
+  const std::string path = build_paths::binary_dir() + "/geo_test_garbage.ts";
   {
     std::ofstream out(path, std::ios::binary);
     out << std::string(5000, 'x');

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include "test_data.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/geo/flight_metadata.hpp"
 
@@ -83,7 +84,7 @@ TEST(GeoJsonTracks, DeterministicAndRounded) {
 }
 
 TEST(GeoJsonTracks, WritesAFile) {
-  const std::string path = std::string(UAVMOT_BINARY_DIR) + "/geo_test_tracks.geojson";
+  const std::string path = build_paths::binary_dir() + "/geo_test_tracks.geojson";
   TrackPath t{1, {{1, {10, 20}}, {40, {300, 200}}}};
   const GeoJsonCounts counts = write_tracks_geojson(path, {t}, aphill().frames, kFps);
   EXPECT_EQ(counts.features, 1u);

@@ -7,9 +7,11 @@
 #include <string>
 #include <vector>
 
+#include "uavmot/build_paths/build_paths.hpp"
+
 namespace uavmot::geo::test {
 
-inline std::string aphill_ts_path() { return std::string(UAVMOT_DATA_DIR) + "/aphill/aphill_short.ts"; }
+inline std::string aphill_ts_path() { return build_paths::data_dir() + "/aphill/aphill_short.ts"; }
 
 inline std::vector<std::uint8_t> read_bytes(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

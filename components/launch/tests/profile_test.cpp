@@ -5,6 +5,7 @@
 
 #include <gtest/gtest.h>
 
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
 #include "scratch_dir.hpp"
 
@@ -28,7 +29,7 @@ std::string error_of(const std::function<void()>& f) {
 
 TEST(LaunchProfile, ShippedProfilesLoadAndResolve) {
   for (const char* name : {"local.yaml", "air.yaml", "ground.yaml"}) {
-    const auto profile = load_profile(std::string(UAVMOT_SOURCE_DIR) + "/bringup/" + name);
+    const auto profile = load_profile(build_paths::source_dir() + "/bringup/" + name);
     EXPECT_FALSE(profile.processes.empty()) << name;
     const auto resolved = resolve(profile, {{"input", "seq"}, {"out", "o"}, {"gsd", "0.35"}, {"fps", "25"}, {"profile_dir", "."}, {"run_dir", "/tmp/r"}});
     for (const auto& p : resolved.processes) {

@@ -26,6 +26,7 @@
 #include <opencv2/imgcodecs.hpp>
 #include <opencv2/imgproc.hpp>
 
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/mcap/queued_writer.hpp"
 #include "uavmot/mcap/reader.hpp"
 #include "uavmot/mcap/writer.hpp"
@@ -77,7 +78,7 @@ std::vector<std::vector<uint8_t>> load_mosaics(const std::string& dir, int count
 
 int main(int argc, char** argv) {
   int frames = 240;
-  std::string data = std::string(UAVMOT_DATA_DIR) + "/clif2007/jpg";
+  std::string data = uavmot::build_paths::data_dir() + "/clif2007/jpg";
   std::string out = "/tmp/uavmot_mcap_bench";
   uint64_t chunk_size = 4ull << 20;
   int zstd_level = 0;

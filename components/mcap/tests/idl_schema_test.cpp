@@ -6,6 +6,7 @@
 #include <fstream>
 
 #include "test_util.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/mcap/idl_schema.hpp"
 
@@ -19,7 +20,7 @@ size_t count(const std::string& text, const std::string& needle) {
 }
 
 TEST(FlattenIdl, InlinesIncludesOnceAndKeepsTheRest) {
-  const std::string tracks = flatten_idl(std::string(UAVMOT_SOURCE_DIR) + "/idl/tracks.idl");
+  const std::string tracks = flatten_idl(build_paths::source_dir() + "/idl/tracks.idl");
   EXPECT_EQ(tracks.find("#include"), std::string::npos);
   EXPECT_EQ(count(tracks, "struct OrientedBox"), 1u);
   EXPECT_EQ(count(tracks, "struct TrackList"), 1u);

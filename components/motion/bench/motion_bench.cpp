@@ -24,6 +24,7 @@
 #include <opencv2/video/tracking.hpp>
 #include <opencv2/videostab/global_motion.hpp>
 
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/core/yaml_config.hpp"
 #include "uavmot/motion/motion_estimator.hpp"
@@ -102,7 +103,7 @@ Result measure(const std::string& name, const Frames& frames, const std::functio
 
 int main(int argc, char** argv) {
   CLI::App app{"Motion layer benchmark: uavmot vs OpenCV videostab vs plain KLT + findHomography"};
-  std::string clif = std::string(UAVMOT_DATA_DIR) + "/clif2007/jpg";
+  std::string clif = uavmot::build_paths::data_dir() + "/clif2007/jpg";
   int frames = 60, width = 1920, height = 1080, threads = 1, features = 1000;
   double speed = 3.0, rotation = 0.05, noise = 1.0, zoom = 0.0005;
   bool describe = false, only_uavmot = false, state = false;

@@ -6,12 +6,13 @@
 #include <string>
 #include <vector>
 
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/motion/motion_estimator.hpp"
 #include "warped_sequence.hpp"
 
 namespace uavmot::motion::test {
 
-inline std::string clif_folder() { return std::string(UAVMOT_DATA_DIR) + "/clif2007/jpg"; }
+inline std::string clif_folder() { return build_paths::data_dir() + "/clif2007/jpg"; }
 
 inline testing::WarpedSequenceOptions camera(double speed_px, double rotation_deg, cv::Size size = {960, 540}) {
   testing::WarpedSequenceOptions o;

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/mcap/idl_schema.hpp"
 
@@ -70,7 +71,7 @@ std::string find_idl_dir() {
   std::vector<fs::path> candidates;
   if (const char* env = std::getenv("UAVMOT_IDL_DIR"); env && *env) candidates.emplace_back(env);
   candidates.push_back(executable_dir() / ".." / "share" / "uavmot" / "idl");
-  candidates.emplace_back(UAVMOT_SOURCE_IDL_DIR);
+  candidates.push_back(fs::path(build_paths::source_dir()) / "idl");  // the build tree's binaries
   std::string tried;
   for (const auto& dir : candidates) {
     if (fs::is_regular_file(dir / "frame.idl")) return fs::weakly_canonical(dir).string();

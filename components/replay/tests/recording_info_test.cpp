@@ -4,13 +4,14 @@
 
 #include <gtest/gtest.h>
 
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/mcap/writer.hpp"
 
 namespace uavmot::replay {
 namespace {
 
 std::string write_sample(const std::string& name, mcap::Compression compression) {
-  const std::string dir = std::string(UAVMOT_BINARY_DIR) + "/test_output/replay_info";
+  const std::string dir = build_paths::binary_dir() + "/test_output/replay_info";
   std::filesystem::create_directories(dir);
   const std::string path = dir + "/" + name;
   std::filesystem::remove(path);

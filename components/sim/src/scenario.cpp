@@ -8,11 +8,8 @@
 #include <fmt/format.h>
 
 #include "scenario_fields.hpp"
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
-
-#ifndef UAVMOT_SIM_DEFAULT_TEXTURE_DIR
-#define UAVMOT_SIM_DEFAULT_TEXTURE_DIR "data/clif2007/jpg"
-#endif
 
 namespace uavmot::sim {
 namespace {
@@ -322,7 +319,7 @@ std::string scenario_to_yaml(const Scenario& scenario) {
 std::string default_texture_dir() {
   if (const char* data = std::getenv("UAVMOT_DATA_DIR"); data && *data)
     return std::string(data) + "/clif2007/jpg";
-  return UAVMOT_SIM_DEFAULT_TEXTURE_DIR;
+  return build_paths::data_dir() + "/clif2007/jpg";
 }
 
 }  // namespace uavmot::sim

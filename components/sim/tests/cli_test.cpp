@@ -9,6 +9,8 @@
 
 #include <gtest/gtest.h>
 
+#include "uavmot/build_paths/build_paths.hpp"
+
 namespace {
 namespace fs = std::filesystem;
 
@@ -19,7 +21,7 @@ struct ProcessResult {
 
 ProcessResult run(const std::string& args) {
   const fs::path log = fs::temp_directory_path() / ("uavmot_sim_cli_" + std::to_string(::getpid()) + ".log");
-  const std::string cmd = std::string(UAVMOT_BINARY_DIR) + "/bin/uavmot-sim " + args + " >" + log.string() + " 2>&1";
+  const std::string cmd = uavmot::build_paths::binary_dir() + "/bin/uavmot-sim " + args + " >" + log.string() + " 2>&1";
   const int status = std::system(cmd.c_str());
   ProcessResult r;
   r.code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;

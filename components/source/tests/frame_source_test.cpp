@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 #include <opencv2/imgcodecs.hpp>
 
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/source/frame_prefetcher.hpp"
 #include "uavmot/source/sequence_info.hpp"
@@ -16,8 +17,8 @@ namespace uavmot::source {
 namespace {
 namespace fs = std::filesystem;
 
-const fs::path kClif = fs::path(UAVMOT_DATA_DIR) / "clif2007" / "jpg";
-const fs::path kAphillMp4 = fs::path(UAVMOT_DATA_DIR) / "aphill" / "aphill_240_1fps_crf32.mp4";
+const fs::path kClif = fs::path(build_paths::data_dir()) / "clif2007" / "jpg";
+const fs::path kAphillMp4 = fs::path(build_paths::data_dir()) / "aphill" / "aphill_240_1fps_crf32.mp4";
 
 fs::path fresh_dir(const std::string& name) {
   return test_support::fresh_scratch_dir("source_" + name);

@@ -6,6 +6,7 @@
 #include <opencv2/imgproc.hpp>
 #include <opencv2/videoio.hpp>
 
+#include "uavmot/build_paths/build_paths.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/view/video_sink.hpp"
 
@@ -14,7 +15,7 @@ namespace {
 namespace fs = std::filesystem;
 
 std::string temp_path(const std::string& name) {
-  const fs::path dir = fs::path(UAVMOT_BINARY_DIR) / "test_output" / "view";
+  const fs::path dir = fs::path(build_paths::binary_dir()) / "test_output" / "view";
   fs::create_directories(dir);
   return (dir / name).string();
 }
