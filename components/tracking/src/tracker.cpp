@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 
 #include "frame_input.hpp"
 #include "kalman_model.hpp"
@@ -109,6 +111,14 @@ void Tracker::restore(const TrackerState& state) {
     const KalmanState k = to_kalman(t);
     if (!is_finite(k) || t.id == 0) throw InvalidArgument("tracker state: track " + std::to_string(t.id) + " is not valid");
   };
+  // Counters the next frame increments: one at its limit (a corrupt or hostile sample) cannot go
+  // on; frames_processed would overflow (found by fuzzing) and next_id would hand out id 0.
+  if (state.frames_processed < 0 || state.frames_processed == std::numeric_limits<int64_t>::max()) {
+    throw InvalidArgument("tracker state: frames_processed " + std::to_string(state.frames_processed) + " is out of range");
+  }
+  if (state.next_id == 0 || state.next_id == std::numeric_limits<uint64_t>::max()) {
+    throw InvalidArgument("tracker state: next_id " + std::to_string(state.next_id) + " is out of range");
+  }
   for (const auto& t : state.tracks) check(t);
   for (const auto& t : state.dormant) check(t);
   for (const auto* list : {&state.tracks, &state.dormant}) {

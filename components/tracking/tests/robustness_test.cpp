@@ -128,6 +128,24 @@ TEST(TrackerRobustness, RestoreRejectsInconsistentState) {
   EXPECT_THROW(tracker.restore(st), InvalidArgument);
 }
 
+// Counters at their limit would overflow on the next frame (a fuzzed sample had frames_processed
+// = INT64_MAX: tests/fuzz/regressions/sample_validators/tracker_frames_at_int64_max).
+TEST(TrackerRobustness, RestoreRejectsCountersThatCannotGoOn) {
+  Tracker tracker;
+  TrackerState st;
+  st.frames_processed = std::numeric_limits<int64_t>::max();
+  EXPECT_THROW(tracker.restore(st), InvalidArgument);
+  st.frames_processed = -1;
+  EXPECT_THROW(tracker.restore(st), InvalidArgument);
+  st.frames_processed = 7;
+  st.next_id = 0;
+  EXPECT_THROW(tracker.restore(st), InvalidArgument);
+  st.next_id = std::numeric_limits<uint64_t>::max();
+  EXPECT_THROW(tracker.restore(st), InvalidArgument);
+  st.next_id = 1;
+  EXPECT_NO_THROW(tracker.restore(st));
+}
+
 TEST(TrackerRobustness, IdsStartAtOneAndIncrease) {
   SyntheticScene scene(two_cars(), static_camera());
   Tracker tracker;
