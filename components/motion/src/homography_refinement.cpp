@@ -6,29 +6,10 @@
 #include <ceres/ceres.h>
 #include <opencv2/core.hpp>
 
+#include "symmetric_transfer_error.hpp"
+
 namespace uavmot::motion {
 namespace {
-
-// Residuals in pixels: H p - q (in frame k) and H^-1 q - p (in frame k-1). `h` holds the first
-// eight entries of the normalised homography (h33 = 1); the inverse is the adjugate.
-struct SymmetricTransferError {
-  double px, py, qx, qy;
-  double to_px_forward, to_px_backward;  // undo the normalisation scale of each image
-
-  template <typename T>
-  bool operator()(const T* const h, T* r) const {
-    const T w = h[6] * px + h[7] * py + T(1.0);
-    r[0] = ((h[0] * px + h[1] * py + h[2]) / w - qx) * to_px_forward;
-    r[1] = ((h[3] * px + h[4] * py + h[5]) / w - qy) * to_px_forward;
-    const T a = h[4] - h[5] * h[7], b = h[2] * h[7] - h[1], c = h[1] * h[5] - h[2] * h[4];
-    const T d = h[5] * h[6] - h[3], e = h[0] - h[2] * h[6], f = h[2] * h[3] - h[0] * h[5];
-    const T g = h[3] * h[7] - h[4] * h[6], k = h[1] * h[6] - h[0] * h[7], l = h[0] * h[4] - h[1] * h[3];
-    const T wi = g * qx + k * qy + l;
-    r[2] = ((a * qx + b * qy + c) / wi - px) * to_px_backward;
-    r[3] = ((d * qx + e * qy + f) / wi - py) * to_px_backward;
-    return true;
-  }
-};
 
 // Similarity that moves the centroid to 0 and the mean distance to sqrt(2) (Hartley).
 cv::Matx33d normalising_transform(const std::vector<cv::Point2f>& points, const std::vector<unsigned char>& use) {
@@ -84,8 +65,7 @@ Homography refine_homography(const Homography& initial, const std::vector<cv::Po
     if (!use[i] || seen++ % stride != 0) continue;
     const cv::Point3d p = tp * cv::Point3d(src[i].x, src[i].y, 1.0);
     const cv::Point3d q = tq * cv::Point3d(dst[i].x, dst[i].y, 1.0);
-    auto* cost = new ceres::AutoDiffCostFunction<SymmetricTransferError, 4, 8>(
-        new SymmetricTransferError{p.x, p.y, q.x, q.y, 1.0 / tq(0, 0), 1.0 / tp(0, 0)});
+    auto* cost = new SymmetricTransferError(p.x, p.y, q.x, q.y, 1.0 / tq(0, 0), 1.0 / tp(0, 0));
     problem.AddResidualBlock(cost, loss.get(), params);
   }
   ceres::Solver::Options solver_options;

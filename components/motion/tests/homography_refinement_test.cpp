@@ -3,11 +3,13 @@
 // the error of the robust estimate alone.
 #include <cstdio>
 
+#include <ceres/autodiff_cost_function.h>
 #include <gtest/gtest.h>
 #include <opencv2/core.hpp>
 
 #include "homography_estimation.hpp"
 #include "homography_refinement.hpp"
+#include "symmetric_transfer_error.hpp"
 #include "uavmot/core/homography.hpp"
 
 namespace uavmot::motion {
@@ -80,6 +82,54 @@ void compare(const std::string& method, double noise_px) {
 
 TEST(HomographyRefinement, CeresLowersErrorOfRansac) { compare("ransac", 0.3); }
 TEST(HomographyRefinement, CeresLowersErrorOfMagsac) { compare("magsac", 0.3); }
+
+// The same residuals differentiated by Ceres's jets: the written-out derivatives must agree.
+struct AutoDiffTransferError {
+  double px, py, qx, qy, sf, sb;
+  template <typename T>
+  bool operator()(const T* const h, T* r) const {
+    const T w = h[6] * px + h[7] * py + T(1.0);
+    r[0] = ((h[0] * px + h[1] * py + h[2]) / w - qx) * sf;
+    r[1] = ((h[3] * px + h[4] * py + h[5]) / w - qy) * sf;
+    const T a = h[4] - h[5] * h[7], b = h[2] * h[7] - h[1], c = h[1] * h[5] - h[2] * h[4];
+    const T d = h[5] * h[6] - h[3], e = h[0] - h[2] * h[6], f = h[2] * h[3] - h[0] * h[5];
+    const T g = h[3] * h[7] - h[4] * h[6], k = h[1] * h[6] - h[0] * h[7], l = h[0] * h[4] - h[1] * h[3];
+    const T wi = g * qx + k * qy + l;
+    r[2] = ((a * qx + b * qy + c) / wi - px) * sb;
+    r[3] = ((d * qx + e * qy + f) / wi - py) * sb;
+    return true;
+  }
+};
+
+TEST(HomographyRefinement, WrittenOutDerivativesMatchAutomaticDifferentiation) {
+  cv::RNG rng(77);
+  for (int trial = 0; trial < 200; ++trial) {
+    double h[8];
+    for (int i = 0; i < 8; ++i) h[i] = (i == 0 || i == 4) ? 1.0 + rng.uniform(-0.2, 0.2) : rng.uniform(-0.3, 0.3);
+    h[6] *= 0.1;
+    h[7] *= 0.1;
+    const double px = rng.uniform(-1.5, 1.5), py = rng.uniform(-1.5, 1.5), qx = rng.uniform(-1.5, 1.5),
+                 qy = rng.uniform(-1.5, 1.5), sf = rng.uniform(100.0, 900.0), sb = rng.uniform(100.0, 900.0);
+    const SymmetricTransferError written(px, py, qx, qy, sf, sb);
+    const ceres::AutoDiffCostFunction<AutoDiffTransferError, 4, 8> automatic(
+        new AutoDiffTransferError{px, py, qx, qy, sf, sb});
+    const double* parameters[1] = {h};
+    double r_written[4], r_automatic[4], j_written[32], j_automatic[32];
+    double* jw[1] = {j_written};
+    double* ja[1] = {j_automatic};
+    ASSERT_TRUE(written.Evaluate(parameters, r_written, jw));
+    ASSERT_TRUE(automatic.Evaluate(parameters, r_automatic, ja));
+    for (int i = 0; i < 4; ++i) EXPECT_NEAR(r_written[i], r_automatic[i], 1e-9 * (1.0 + std::abs(r_automatic[i])));
+    for (int i = 0; i < 32; ++i) {
+      EXPECT_NEAR(j_written[i], j_automatic[i], 1e-9 * (1.0 + std::abs(j_automatic[i])))
+          << "trial " << trial << ", residual " << i / 8 << ", h" << i % 8;
+    }
+    // Residuals alone (no Jacobian asked) are the same values.
+    double r_only[4];
+    ASSERT_TRUE(written.Evaluate(parameters, r_only, nullptr));
+    for (int i = 0; i < 4; ++i) EXPECT_EQ(r_only[i], r_written[i]);
+  }
+}
 
 TEST(HomographyRefinement, ExactDataStaysExact) {
   cv::RNG rng(99);
