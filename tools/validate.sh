@@ -9,6 +9,7 @@
 #   asphalt, vehicle mix, colours and sizes, sun, camera, GSD, frame rate, resolution, blur, noise,
 #   JPEG quality), so the sequences vary as real flights do; cached apart from the plain ones.
 #   (default: --held-out, 250 frames, 2 jobs, presets paper hd small lowsnr fastcam dense slow urban3d oblique)
+#   UAVMOT_BIN=OTHER/bin/uavmot runs another build (an experiment's) on the same cached sequences.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seeds="100 101 102 103 104 105 106 107 108 109" frames=250 jobs=2 config="" work=out/validation label=default presets=() vary=""
@@ -30,7 +31,7 @@ while [ $# -gt 0 ]; do
   shift
 done
 [ ${#presets[@]} -gt 0 ] || presets=(paper hd small lowsnr fastcam dense slow urban3d oblique)
-bin=build/bin/uavmot
+bin=${UAVMOT_BIN:-build/bin/uavmot}
 [ -x "$bin" ] || { echo "validate: $bin is missing; build first (bash tools/build.sh)" >&2; exit 1; }
 mkdir -p "$work"
 

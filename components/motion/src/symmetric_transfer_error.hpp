@@ -8,8 +8,9 @@ namespace uavmot::motion {
 
 // Residuals in pixels: H p - q (in frame k) and H^-1 q - p (in frame k-1). `h` holds the first
 // eight entries of the normalised homography (h33 = 1); the inverse is the adjugate. Derivatives
-// are written out: with automatic differentiation this block cost a fifth of the motion layer's
-// instructions at 1080p (8-dimensional jets through two divisions and the adjugate).
+// are written out: automatic differentiation (8-dimensional jets through two divisions and the
+// adjugate) made the whole refinement 20 % dearer at 1080p. Checked against Ceres's jets in
+// homography_refinement_test.cpp.
 class SymmetricTransferError final : public ceres::SizedCostFunction<4, 8> {
  public:
   SymmetricTransferError(double px, double py, double qx, double qy, double to_px_forward, double to_px_backward)
