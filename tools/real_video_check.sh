@@ -7,6 +7,7 @@
 #     --out     results per sequence (default out/real_video)
 #     --images  where the annotated frames go (default: under --out; docs/images/real_video for the docs)
 #     --config  chain configuration YAML for every sequence (default: the built-in defaults)
+#   UAVMOT_BIN=OTHER/bin/uavmot runs another build (an experiment's).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out=out/real_video images="" config=""
@@ -21,7 +22,7 @@ while [ $# -gt 0 ]; do
   shift
 done
 images=${images:-$out/images}
-bin=build/bin/uavmot
+bin=${UAVMOT_BIN:-build/bin/uavmot}
 [ -x "$bin" ] || { echo "real_video_check: $bin is missing; build first (bash tools/build.sh)" >&2; exit 1; }
 mkdir -p "$out" "$images"
 

@@ -106,7 +106,9 @@ TEST(ChainPaperScenario, ThreeSeedsHoldTheirCorrectRatePrecisionAndFalseAlarms) 
 // The automatic LK window (docs/motion.md, `lk_window_px`) is 7 px at 0.6 m/px: with the 11 px
 // window of the other presets these seeds gave 60.37 / 64.37 / 64.93 % correct and 6.50 / 5.61 /
 // 8.41 false alarms per frame (mean 63.2 %, 6.84); with 7 px 66.14 / 68.76 / 68.92 %, 4.55 / 5.09
-// / 6.00 (mean 67.9 %, 5.21). Issue 18's target for `small` (>= 80 %) is not met yet.
+// / 6.00 (mean 67.9 %, 5.21). With the lower speed floor in frames without 3-D structure
+// (`flat_scene_speed_factor` 0.8, docs/motion.md) 67.37 / 69.53 / 69.62 %, 5.59 / 5.25 / 6.37
+// (mean 68.8 %, 5.74). Issue 18's target for `small` (>= 80 %) is not met yet.
 TEST(ChainSmallScenario, ThreeSeedsOfEightPixelCarsHoldTheirCorrectRateAndFalseAlarms) {
   const std::vector<int> seeds = {1, 2, 3};
   double correct = 0, worst_correct = 1, fa = 0;
@@ -121,9 +123,9 @@ TEST(ChainSmallScenario, ThreeSeedsOfEightPixelCarsHoldTheirCorrectRateAndFalseA
     worst_correct = std::min(worst_correct, rate);
     fa += per_frame / seeds.size();
   }
-  EXPECT_GE(correct, 0.665);
-  EXPECT_GE(worst_correct, 0.65);
-  EXPECT_LE(fa, 5.6);
+  EXPECT_GE(correct, 0.685);
+  EXPECT_GE(worst_correct, 0.67);
+  EXPECT_LE(fa, 5.9);
 }
 
 }  // namespace

@@ -69,8 +69,12 @@ PreparedFrame& PreparedFrame::operator=(PreparedFrame&&) noexcept = default;
 
 class MotionEstimator::Impl {
  public:
-  Impl(MotionOptions options, SceneInfo scene)
-      : options_(resolved_for_scene(std::move(options), scene)), scene_(scene), detector_(options_), parallax_(options_) {}
+  Impl(const MotionOptions& options, SceneInfo scene)
+      : options_(resolved_for_scene(options, scene)),
+        flat_scene_min_speed_px_(flat_scene_min_speed_px(options, scene)),
+        scene_(scene),
+        detector_(options_),
+        parallax_(options_) {}
 
   // `prepared`: the frame's grey image and pyramid built ahead (the pyramid is swapped in), or null.
   MotionEstimate process(const Frame& frame, PreparedFrame::Data* prepared);
@@ -95,6 +99,7 @@ class MotionEstimator::Impl {
   void detect_new_features(const cv::Mat& gray, bool continuous);
 
   MotionOptions options_;
+  double flat_scene_min_speed_px_;  // the classifier's speed floor in frames without structure
   SceneInfo scene_;
   GridCornerDetector detector_;
   ParallaxFilter parallax_;
@@ -289,11 +294,16 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   }
   const double floor_px = scene_noise_floor(std::move(speeds), o);
   const StructureEdges edges(parallax_.supporters(), o);
+  // The pixel floor guards mostly against parallax: a frame where no structure was found uses a
+  // lower one (flat_scene_speed_factor), vehicles creeping in queues are above it.
+  const bool structure_found = parallax_.model().valid || parallax_.model().provisional;
+  MotionOptions decision_options = o;
+  if (!structure_found) decision_options.min_moving_speed_px = flat_scene_min_speed_px_;
   for (size_t k = 0; k < survivors.size(); ++k) {
     LiveFeature& f = survivors[k];
     // A corner on a roof's or crown's silhouette slides off its epipolar line: it does not start moving.
     if (f.velocity.available) decided[k].velocity = edges.decided_velocity(parallax_sample(f, h), decided[k].velocity, f.classifier.moving());
-    f.classifier.update(decided[k], static_cast<int>(f.age), o, floor_px);
+    f.classifier.update(decided[k], static_cast<int>(f.age), decision_options, floor_px);
   }
   if (o.dragged_ratio > 0.0) {
     const Homography current_to_previous = h.inv();

@@ -134,4 +134,11 @@ MotionOptions resolved_for_scene(MotionOptions o, const SceneInfo& scene) {
   return o;
 }
 
+double flat_scene_min_speed_px(const MotionOptions& o, const SceneInfo& scene) {
+  const MotionOptions resolved = resolved_for_scene(o, scene);  // validates, and the scene for the m/s floor
+  if (o.flat_scene_speed_factor >= 1.0) return resolved.min_moving_speed_px;
+  const double from_ground = o.min_moving_speed_mps > 0.0 ? o.min_moving_speed_mps / (scene.gsd_m * scene.fps) : 0.0;
+  return std::max(o.flat_scene_speed_factor * o.min_moving_speed_px, from_ground);
+}
+
 }  // namespace uavmot::motion

@@ -180,6 +180,23 @@ TEST(MotionOptions, AutomaticLkWindowFollowsTheCarsSizeInPixels) {
   EXPECT_EQ(load_motion_options(ConfigNode::load_string("lk_window_px: 0\n", "m.yaml")).lk_window_px, 0);
 }
 
+TEST(MotionOptions, FlatSceneFloorLowersThePixelFloorOnlyDownToTheGroundSpeed) {
+  MotionOptions o;  // 0.15 px/frame, 1 m/s, factor 0.8
+  EXPECT_DOUBLE_EQ(o.flat_scene_speed_factor, 0.8);
+  // `small` (0.6 m/px at 25 fps: 1 m/s is 0.067 px/frame) and `paper` (0.35 m/px: 0.114): the
+  // scaled pixel floor, 0.12, governs.
+  EXPECT_NEAR(flat_scene_min_speed_px(o, scene_at(0.6)), 0.12, 1e-9);
+  EXPECT_NEAR(flat_scene_min_speed_px(o, scene_at(0.35)), 0.12, 1e-9);
+  // `hd`, 0.3 m/px: 1 m/s is 0.133 px/frame, above 0.12.
+  EXPECT_NEAR(flat_scene_min_speed_px(o, scene_at(0.3)), 1.0 / (0.3 * 25.0), 1e-9);
+  // FMV at 0.05 m/px: the ground-speed floor (0.8 px/frame) is all there is, with structure or not.
+  EXPECT_NEAR(flat_scene_min_speed_px(o, scene_at(0.05)), resolved_for_scene(o, scene_at(0.05)).min_moving_speed_px, 1e-12);
+  // Off: the same floor as in frames with structure.
+  o.flat_scene_speed_factor = 1.0;
+  EXPECT_DOUBLE_EQ(flat_scene_min_speed_px(o, scene_at(0.6)), resolved_for_scene(o, scene_at(0.6)).min_moving_speed_px);
+  EXPECT_THROW(load_motion_options(ConfigNode::load_string("flat_scene_speed_factor: 1.5\n", "m.yaml")), InputError);
+}
+
 TEST(MotionOptions, EstimatorRejectsInconsistentOptions) {
   MotionOptions o;
   o.lk_window_px = 10;

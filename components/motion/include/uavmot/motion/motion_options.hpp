@@ -80,6 +80,10 @@ struct MotionOptions {
   double moving_sigma_factor = 4.0;    // moving when speed > factor * velocity_sigma ...
   double min_moving_speed_px = 0.15;   // ... and > this (px/frame)
   double min_moving_speed_mps = 1.0;   // ... and > this ground speed (m/s, via SceneInfo); 0 = unused
+  // In a frame where the parallax fit finds no 3-D structure (its model neither trusted nor
+  // provisional) the pixel floor counts this much (the ground-speed floor stays whole): what it
+  // guards against most is parallax. 1 = off.
+  double flat_scene_speed_factor = 0.8;
   double scene_noise_factor = 6.0;     // ... and > this times the frame's robust velocity noise (0 = unused)
   double scene_noise_max_px = 0.25;    // ... which counts up to this (px/frame)
   int confirm_frames = 2;           // consecutive significant frames to become moving (and to stop)
@@ -178,6 +182,7 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("moving_sigma_factor", o.moving_sigma_factor, Range<double>{0.0, 100.0});
   visit("min_moving_speed_px", o.min_moving_speed_px, Range<double>{0.0, 1000.0});
   visit("min_moving_speed_mps", o.min_moving_speed_mps, Range<double>{0.0, 1000.0});
+  visit("flat_scene_speed_factor", o.flat_scene_speed_factor, Range<double>{0.0, 1.0});
   visit("scene_noise_factor", o.scene_noise_factor, Range<double>{0.0, 100.0});
   visit("scene_noise_max_px", o.scene_noise_max_px, Range<double>{0.0, 1000.0});
   visit("confirm_frames", o.confirm_frames, Range<int>{1, 100});
@@ -217,5 +222,10 @@ int automatic_lk_window_px(const SceneInfo& scene);
 // `options` with every scene-dependent value resolved for `scene` (lk_window_px = 0); what a
 // MotionEstimator runs with and reports as options().
 MotionOptions resolved_for_scene(MotionOptions options, const SceneInfo& scene);
+
+// The classifier's speed floor (px/frame) in a frame where the parallax fit found no 3-D
+// structure: flat_scene_speed_factor x min_moving_speed_px, never below min_moving_speed_mps in
+// `scene`. `options` as given, not resolved.
+double flat_scene_min_speed_px(const MotionOptions& options, const SceneInfo& scene);
 
 }  // namespace uavmot::motion
