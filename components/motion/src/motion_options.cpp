@@ -120,25 +120,30 @@ int automatic_lk_window_px(const SceneInfo& scene) {
   return static_cast<int>(std::clamp(odd, 7.0, 11.0));
 }
 
+namespace {
+
+// min_moving_speed_mps in px/frame in `scene` (0 when unused).
+double ground_speed_floor_px(const MotionOptions& o, const SceneInfo& scene) {
+  if (!(o.min_moving_speed_mps > 0.0)) return 0.0;
+  if (!(scene.gsd_m > 0.0) || !(scene.fps > 0.0)) {
+    throw InputError("motion options: min_moving_speed_mps needs a scene with gsd_m > 0 and fps > 0");
+  }
+  return o.min_moving_speed_mps / (scene.gsd_m * scene.fps);
+}
+
+}  // namespace
+
 MotionOptions resolved_for_scene(MotionOptions o, const SceneInfo& scene) {
   validate(o);
   if (o.lk_window_px == 0) o.lk_window_px = automatic_lk_window_px(scene);
-  if (o.min_moving_speed_mps > 0.0) {
-    if (!(scene.gsd_m > 0.0) || !(scene.fps > 0.0)) {
-      throw InputError("motion options: min_moving_speed_mps needs a scene with gsd_m > 0 and fps > 0");
-    }
-    // One threshold in px/frame for the classifier: the stricter of the two.
-    const double from_ground = o.min_moving_speed_mps / (scene.gsd_m * scene.fps);
-    o.min_moving_speed_px = std::max(o.min_moving_speed_px, from_ground);
-  }
+  // One threshold in px/frame for the classifier: the stricter of the two.
+  o.min_moving_speed_px = std::max(o.min_moving_speed_px, ground_speed_floor_px(o, scene));
   return o;
 }
 
 double flat_scene_min_speed_px(const MotionOptions& o, const SceneInfo& scene) {
-  const MotionOptions resolved = resolved_for_scene(o, scene);  // validates, and the scene for the m/s floor
-  if (o.flat_scene_speed_factor >= 1.0) return resolved.min_moving_speed_px;
-  const double from_ground = o.min_moving_speed_mps > 0.0 ? o.min_moving_speed_mps / (scene.gsd_m * scene.fps) : 0.0;
-  return std::max(o.flat_scene_speed_factor * o.min_moving_speed_px, from_ground);
+  validate(o);
+  return std::max(o.flat_scene_speed_factor * o.min_moving_speed_px, ground_speed_floor_px(o, scene));
 }
 
 }  // namespace uavmot::motion
