@@ -9,7 +9,9 @@ the rule), beside it (within 1.5 vehicle lengths), or far (farther, or no moving
 It also counts the false alarms whose nearest moving vehicle has a box of its own in that frame, and
 splits those overlapping a vehicle by whether that vehicle has its own box (else the box is a
 misplaced box of a vehicle the run missed: one miss and one false alarm) and by the box's area
-against the vehicle's (larger: over 1.5 x; smaller: under 0.67 x; else similar).
+against the vehicle's (larger: over 1.5 x; smaller: under 0.67 x; else similar). Last, from the
+vehicles' side: the moving vehicles the run missed that have one, or two or more, false-alarm boxes
+overlapping them (a box beside the car, or two tracks on its two edges: docs/tracking.md, session 27).
 
     python3 tools/false_alarm_places.py SEQUENCE_DIR RESULT_DIR
 """
@@ -108,6 +110,7 @@ def main():
     places = collections.Counter()
     overlapping = collections.Counter()  # (vehicle has its own box or was missed, box size) -> boxes
     beside_a_found_vehicle = 0
+    missed_with_boxes = collections.Counter()  # missed moving vehicles by false-alarm boxes on them (0, 1, 2 = two or more)
     for frame, boxes in sorted(tracks.items()):
         vehicles = truth.get(frame, [])
         owner = []
@@ -119,6 +122,11 @@ def main():
                     break
             owner.append(found)
         found_vehicles = {o for o in owner if o is not None}
+        for g, _, gpoly in vehicles:
+            if g["moving"] != "1" or g["id"] in found_vehicles:
+                continue
+            on_it = sum(1 for (_, _, poly), o in zip(boxes, owner) if o is None and intersection_area(poly, gpoly) > 0)
+            missed_with_boxes[min(on_it, 2)] += 1
         for (_, box, poly), o in zip(boxes, owner):
             if o is not None:
                 continue
@@ -148,6 +156,9 @@ def main():
         label = "on a vehicle the run missed" if own == "missed" else "on a vehicle with its own box"
         sizes = ", ".join(f"{size} {overlapping[own, size]}" for size in ("similar", "larger", "smaller"))
         print(f"  overlapping, {label}: {sum(overlapping[own, s] for s in ('similar', 'larger', 'smaller'))} ({sizes})")
+    missed = sum(missed_with_boxes.values())
+    print(f"missed moving instances in frames with boxes: {missed}; with a false-alarm box on them: "
+          f"{missed_with_boxes[1] + missed_with_boxes[2]} (one {missed_with_boxes[1]}, two or more {missed_with_boxes[2]})")
 
 
 if __name__ == "__main__":
