@@ -104,7 +104,10 @@ def main():
     sequence, result = sys.argv[1], sys.argv[2]
     try:
         truth, tracks, _ = read_run(sequence, result)
-    except (OSError, KeyError, ValueError) as e:
+    except KeyError as e:
+        print(f"false_alarm_places: a column is missing in gt_obb.csv or tracks_obb.csv: {e}", file=sys.stderr)
+        sys.exit(2)
+    except (OSError, ValueError) as e:
         print(f"false_alarm_places: {e}", file=sys.stderr)
         sys.exit(2)
     places = collections.Counter()
