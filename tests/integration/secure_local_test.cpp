@@ -133,7 +133,7 @@ TEST(SecureHealth, AnotherNodesCertificateCannotReportAsMotion) {
   auto forge = [&](const std::string& name, const std::string& identity, const std::string& component, const std::string& partition,
                    const std::string& stream) {
     std::vector<std::string> argv = {build_paths::binary_dir() + "/tests/uavmot-test-forge-health", "--component", component,
-                                     "--stream", stream, "--seconds", "30", "--domain", std::to_string(domain)};
+                                     "--stream", stream, "--seconds", "60", "--domain", std::to_string(domain)};
     if (!partition.empty()) argv.insert(argv.end(), {"--partition", partition});
     std::map<std::string, std::string> env;
     if (!identity.empty()) env["UAVMOT_QOS_PROFILES"] = security + "/" + identity + ".xml";
@@ -150,13 +150,25 @@ TEST(SecureHealth, AnotherNodesCertificateCannotReportAsMotion) {
   auto uncertified = forge("uncertified", "", "tracking", "", "forged");
   auto real_motion = forge("real_motion", "motion", "motion", "", "real");
   std::this_thread::sleep_for(std::chrono::seconds(1));
-  auto status = start_status(root + "/status.log", domain, security + "/status.xml", 8);
-  const StatusSeen seen = finish_status(*status);
-  EXPECT_EQ(seen.code, 0) << seen.log;
-  EXPECT_TRUE(seen.rows.count({"motion", "real"})) << "the real motion's report is missing:\n" << seen.log;
-  EXPECT_TRUE(seen.rows.count({"sink", "forged"})) << "the sink's own report is missing:\n" << seen.log;
-  EXPECT_FALSE(seen.rows.count({"motion", "forged"})) << "status took the sink's report as motion's:\n" << seen.log;
-  EXPECT_FALSE(seen.rows.count({"tracking", "forged"})) << "an uncertified participant reported:\n" << seen.log;
+  // Polled until both allowed reports were seen: a PKI-DH handshake between the status participant
+  // and one node can time out under load (see the chain test above), and each poll is a new
+  // participant. The refused reports must be absent from every poll.
+  std::set<std::pair<std::string, std::string>> seen_rows;
+  std::string last_log;
+  int polls = 0;
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(45);
+  while (std::chrono::steady_clock::now() < deadline &&
+         !(seen_rows.count({"motion", "real"}) && seen_rows.count({"sink", "forged"}))) {
+    auto status = start_status(root + "/status_" + std::to_string(++polls) + ".log", domain, security + "/status.xml", 5);
+    const StatusSeen seen = finish_status(*status);
+    EXPECT_TRUE(seen.code == 0 || seen.code == 1) << seen.log;  // 1: this poll saw nobody
+    EXPECT_FALSE(seen.rows.count({"motion", "forged"})) << "status took the sink's report as motion's:\n" << seen.log;
+    EXPECT_FALSE(seen.rows.count({"tracking", "forged"})) << "an uncertified participant reported:\n" << seen.log;
+    seen_rows.insert(seen.rows.begin(), seen.rows.end());
+    last_log = seen.log;
+  }
+  EXPECT_TRUE(seen_rows.count({"motion", "real"})) << "the real motion's report is missing after " << polls << " polls:\n" << last_log;
+  EXPECT_TRUE(seen_rows.count({"sink", "forged"})) << "the sink's own report is missing after " << polls << " polls:\n" << last_log;
   for (auto* p : {as_motion.get(), as_itself.get(), uncertified.get(), real_motion.get()}) {
     p->signal(SIGTERM);
     EXPECT_EQ(p->wait(std::chrono::seconds(20)), 0) << p->log();
