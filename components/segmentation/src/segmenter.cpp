@@ -8,6 +8,7 @@
 
 #include "uavmot/core/error.hpp"
 #include "uavmot/segmentation/blob_regions.hpp"
+#include "feature_recentring.hpp"
 #include "method_gradients.hpp"
 #include "shift_check.hpp"
 
@@ -195,11 +196,7 @@ std::vector<Region> Segmenter::segment_window(const cv::Mat& gray, const cv::Rec
         box.width < r.min_width_factor * vehicle_width || box.width > r.max_width_factor * vehicle_width) {
       continue;
     }
-    OrientedBox grown = box;
-    grown.length += 2.0 * r.support_margin_px;
-    grown.width += 2.0 * r.support_margin_px;
-    int support = 0;
-    for (const auto& p : feature_positions) support += box_contains(grown, p) ? 1 : 0;
+    const int support = static_cast<int>(features_within(box, r.support_margin_px, feature_positions).size());
     if (support < r.min_supporting_features || support == 0) continue;
     Region region;
     region.box = box;
@@ -288,7 +285,11 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
         }
         windows.push_back(std::move(current));
       }
-      for (const Region& region : regions) shadow_.observe(gray, window.tl(), region.box);
+      for (Region& region : regions) {
+        shadow_.observe(gray, window.tl(), region.box);  // the blob as found: its dark side is the shadow
+        region.box = recentred_on_features(region.box, features_within(region.box, r.support_margin_px, feature_positions),
+                                           r.recentre_min_offset_fraction);
+      }
     } else {
       ++stats_.windows_without_pixels;
     }

@@ -95,6 +95,10 @@ struct RegionOptions {
   double group_length_factor = 1.3;
   double group_width_factor = 1.5;
   double group_touch_px = 3.0;
+  // A region whose supporting features' mean lies more than this fraction of its width to one
+  // side of its centre line is moved across onto them: the blob took in static texture beside the
+  // vehicle, e.g. the lane marking along a road-grey car (docs/segmentation.md); 0 disables.
+  double recentre_min_offset_fraction = 0.2;
   // Plausible region sizes, as multiples of the expected vehicle length / width.
   double min_length_factor = 0.4;
   double max_length_factor = 3.0;
