@@ -3,9 +3,6 @@
 #include <cmath>
 
 namespace uavmot::segmentation {
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
 
 std::vector<cv::Point2d> features_within(const OrientedBox& box, double margin_px, const std::vector<cv::Point2d>& points) {
   OrientedBox grown = box;
@@ -20,11 +17,9 @@ std::vector<cv::Point2d> features_within(const OrientedBox& box, double margin_p
 
 double mean_offset_across(const OrientedBox& box, const std::vector<cv::Point2d>& points) {
   if (points.empty()) return 0.0;
-  const double theta = box.angle_deg * kPi / 180.0;
-  const double ux = std::cos(theta), uy = std::sin(theta);
-  double sum = 0.0;
-  for (const auto& p : points) sum += -(p.x - box.cx) * uy + (p.y - box.cy) * ux;
-  return sum / static_cast<double>(points.size());
+  double sum = 0.0;  // across, in widths
+  for (const auto& p : points) sum += to_box_coordinates(box, p).y;
+  return sum / static_cast<double>(points.size()) * box.width;
 }
 
 OrientedBox recentred_on_features(const OrientedBox& box, const std::vector<cv::Point2d>& features,
@@ -32,10 +27,10 @@ OrientedBox recentred_on_features(const OrientedBox& box, const std::vector<cv::
   if (min_offset_fraction <= 0.0 || features.size() < 2) return box;
   const double across = mean_offset_across(box, features);
   if (!(std::abs(across) > min_offset_fraction * box.width)) return box;  // also NaN
-  const double theta = box.angle_deg * kPi / 180.0;
   OrientedBox moved = box;
-  moved.cx -= across * std::sin(theta);
-  moved.cy += across * std::cos(theta);
+  const cv::Point2d centre = from_box_coordinates(box, {0.0, across / box.width});
+  moved.cx = centre.x;
+  moved.cy = centre.y;
   return moved;
 }
 
