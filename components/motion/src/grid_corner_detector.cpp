@@ -206,14 +206,17 @@ std::vector<cv::Point2f> detect_changed_corners(const cv::Mat& gray, const cv::M
 }
 
 std::vector<cv::Point2f> GridCornerDetector::detect(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
-                                                    bool continuous) {
+                                                    bool continuous, double response_scale) {
   const int cell = detection_cell_size(options_, gray.size());
   const size_t cells = static_cast<size_t>(((gray.cols + cell - 1) / cell) * ((gray.rows + cell - 1) / cell));
   if (!continuous || gray.size() != size_ || retry_at_.size() != cells) {
     size_ = gray.size();
     retry_at_.assign(cells, 0);
   }
-  return detect_in_cells(gray, existing, options_, &retry_at_, calls_++);
+  if (response_scale == 1.0) return detect_in_cells(gray, existing, options_, &retry_at_, calls_++);
+  MotionOptions scaled = options_;
+  scaled.min_corner_response *= response_scale;
+  return detect_in_cells(gray, existing, scaled, &retry_at_, calls_++);
 }
 
 }  // namespace uavmot::motion

@@ -43,7 +43,9 @@ std::vector<cv::Point2f> detect_changed_corners(const cv::Mat& gray, const cv::M
 class GridCornerDetector {
  public:
   explicit GridCornerDetector(const MotionOptions& options) : options_(options) {}
-  std::vector<cv::Point2f> detect(const cv::Mat& gray, const std::vector<cv::Point2f>& existing, bool continuous);
+  // `response_scale` multiplies min_corner_response in this call (a low-contrast frame).
+  std::vector<cv::Point2f> detect(const cv::Mat& gray, const std::vector<cv::Point2f>& existing, bool continuous,
+                                  double response_scale = 1.0);
   void reset() {  // as constructed
     retry_at_.clear();
     calls_ = 0;

@@ -18,10 +18,18 @@ void build_pyramid(const cv::Mat& gray, const MotionOptions& o, Pyramid& pyramid
                               /*tryReuseInputImage=*/false);
 }
 
+// LK's minimum eigenvalue (OPTFLOW_LK_GET_MIN_EIGENVALS) is the window's mean squared gradient
+// (grey levels per pixel) / 1 024, cv::cornerMinEigenVal's the 5 x 5 block's sum of it / 406 406,
+// i.e. its mean / 16 256: about 16 to one where the texture is uniform. At a corner just detected,
+// whose 5 x 5 block is the strongest part of the 11 x 11 window, LK's value is lower (a median 9 to
+// one on `paper` frame 10), so a feature starts at about half its detection response.
+constexpr float kLkEigenPerCornerResponse = 16.0f;
+
 void track_features(const Pyramid& previous, const Pyramid& current, const std::vector<cv::Point2f>& from,
                     const std::vector<cv::Point2f>& guess, const MotionOptions& o, std::vector<cv::Point2f>& to,
-                    std::vector<unsigned char>& tracked) {
+                    std::vector<unsigned char>& tracked, std::vector<float>& corner_strength) {
   tracked.assign(from.size(), 0);
+  corner_strength.assign(from.size(), 0.0f);
   to = guess;
   if (from.empty()) return;
   const cv::Size window(o.lk_window_px, o.lk_window_px);
@@ -29,8 +37,9 @@ void track_features(const Pyramid& previous, const Pyramid& current, const std::
                                   o.lk_epsilon_px);
   std::vector<unsigned char> forward_ok, backward_ok;
   std::vector<float> error;
-  cv::calcOpticalFlowPyrLK(previous.levels, current.levels, from, to, forward_ok, error, window, o.pyramid_levels,
-                           criteria, cv::OPTFLOW_USE_INITIAL_FLOW);
+  std::vector<float> min_eigen;  // of each window in `previous` at full resolution; the flag changes nothing else
+  cv::calcOpticalFlowPyrLK(previous.levels, current.levels, from, to, forward_ok, min_eigen, window, o.pyramid_levels,
+                           criteria, cv::OPTFLOW_USE_INITIAL_FLOW | cv::OPTFLOW_LK_GET_MIN_EIGENVALS);
   // Backward from the answer, starting at the original position: a consistent track needs no
   // coarse levels to come back, so this costs a fraction of the forward pass.
   std::vector<cv::Point2f> back = from;
@@ -47,6 +56,7 @@ void track_features(const Pyramid& previous, const Pyramid& current, const std::
     const cv::Point2f& p = to[i];
     if (!(p.x >= lo && p.y >= lo && p.x <= hi_x && p.y <= hi_y)) continue;
     tracked[i] = 1;
+    corner_strength[i] = min_eigen[i] / kLkEigenPerCornerResponse;
   }
 }
 

@@ -23,10 +23,12 @@ void build_pyramid(const cv::Mat& gray, const MotionOptions& options, Pyramid& p
 
 // Tracks `from` (in `previous`) into `current`, starting at `guess`. `tracked[i]` is set where the
 // forward track converged, the backward track returns within max_forward_backward_px and the
-// result lies border_px inside the image.
+// result lies border_px inside the image. `corner_strength[i]` is the minimum eigenvalue of the
+// point's LK window in `previous`, in min_corner_response's units (cv::cornerMinEigenVal's).
 void track_features(const Pyramid& previous, const Pyramid& current, const std::vector<cv::Point2f>& from,
                     const std::vector<cv::Point2f>& guess, const MotionOptions& options,
-                    std::vector<cv::Point2f>& to, std::vector<unsigned char>& tracked);
+                    std::vector<cv::Point2f>& to, std::vector<unsigned char>& tracked,
+                    std::vector<float>& corner_strength);
 
 // Global translation from `previous` to `current` by phase correlation on a coarse pyramid level
 // (the coarsest whose smaller side is at least 64 px), in full-resolution pixels. Used to recover

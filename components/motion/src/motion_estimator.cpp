@@ -18,6 +18,7 @@
 #include "grid_corner_detector.hpp"
 #include "homography_estimation.hpp"
 #include "homography_refinement.hpp"
+#include "image_contrast.hpp"
 #include "klt_tracker.hpp"
 #include "parallax_filter.hpp"
 #include "relative_velocity.hpp"
@@ -28,11 +29,15 @@
 namespace uavmot::motion {
 namespace {
 
+// The contrast is read off every 8th row (and every 2nd column): a 99th percentile needs no more.
+constexpr int kContrastRowStep = 8;
+
 struct LiveFeature {
   uint64_t id = 0;
   cv::Point2f position;
   uint32_t age = 0;  // frames seen, 1 when detected
   FeatureHistory history;
+  float corner_strength = 0.0f;  // its LK window's minimum eigenvalue this frame (min_corner_response units)
   VelocityEstimate velocity;
   MotionClassifier classifier;
 };
@@ -111,6 +116,7 @@ class MotionEstimator::Impl {
   bool last_valid_ = false;
   int64_t last_frame_index_ = 0;
   cv::Mat gray_;
+  double response_scale_ = 1.0;  // this frame's factor on min_corner_response (its contrast)
 };
 
 namespace {
@@ -158,6 +164,10 @@ MotionEstimate MotionEstimator::Impl::process(const Frame& frame, PreparedFrame:
     build_pyramid(gray_, options_, current);
   }
 
+  response_scale_ = options_.contrast_reference_grey > 0.0
+                        ? corner_response_scale(gradient_percentile(gray_, 99.0, kContrastRowStep),
+                                                options_.contrast_reference_grey, options_.contrast_min_scale)
+                        : 1.0;
   const bool valid = track_and_estimate(current, out);
   if (!valid) features_.clear();  // nothing links this frame to the last: every feature restarts
   last_valid_ = valid;
@@ -183,19 +193,23 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   // One tracking attempt from the initial positions `guess`; true when it gives a usable homography.
   std::vector<cv::Point2f> src, dst;
   std::vector<size_t> index;  // into features_
+  std::vector<float> strength;  // per tracked feature, as src
   RobustHomography robust;
   auto attempt = [&](const std::vector<cv::Point2f>& guess) {
     std::vector<cv::Point2f> to;
     std::vector<unsigned char> tracked;
-    track_features(previous_, current, from, guess, o, to, tracked);
+    std::vector<float> strengths;
+    track_features(previous_, current, from, guess, o, to, tracked, strengths);
     src.clear();
     dst.clear();
     index.clear();
+    strength.clear();
     for (size_t i = 0; i < features_.size(); ++i) {
       if (!tracked[i]) continue;
       src.push_back(from[i]);
       dst.push_back(to[i]);
       index.push_back(i);
+      strength.push_back(strengths[i]);
     }
     if (static_cast<double>(src.size()) < o.min_tracked_ratio * static_cast<double>(features_.size())) {
       robust = RobustHomography{};
@@ -256,6 +270,7 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
     survivors_from.push_back(src[k]);
     LiveFeature f = std::move(features_[index[k]]);
     f.position = dst[k];
+    f.corner_strength = strength[k];
     ++f.age;
     f.history.carry_forward(h);
     f.history.push(f.position, o.history_frames);
@@ -299,10 +314,16 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   const bool structure_found = parallax_.model().valid || parallax_.model().provisional;
   MotionOptions decision_options = o;
   if (!structure_found) decision_options.min_moving_speed_px = flat_scene_min_speed_px_;
+  const double faded_corner_threshold = o.faded_corner_ratio * o.min_corner_response * response_scale_;
   for (size_t k = 0; k < survivors.size(); ++k) {
     LiveFeature& f = survivors[k];
     // A corner on a roof's or crown's silhouette slides off its epipolar line: it does not start moving.
     if (f.velocity.available) decided[k].velocity = edges.decided_velocity(parallax_sample(f, h), decided[k].velocity, f.classifier.moving());
+    // In a low-contrast frame a corner far below the threshold (noise on a weak corner, an edge it
+    // slides along) cannot place itself to the precision the test needs: it does not start moving.
+    if (response_scale_ < 1.0 && !f.classifier.moving() && f.corner_strength < faded_corner_threshold) {
+      decided[k].velocity = cv::Vec2d(0.0, 0.0);
+    }
     f.classifier.update(decided[k], static_cast<int>(f.age), decision_options, floor_px);
   }
   if (o.dragged_ratio > 0.0) {
@@ -334,7 +355,7 @@ void MotionEstimator::Impl::detect_new_features(const cv::Mat& gray, bool contin
     found = detect_changed_corners(gray, changed, existing, options_, options_.change_seed_features);
     existing.insert(existing.end(), found.begin(), found.end());
   }
-  const std::vector<cv::Point2f> grid = detector_.detect(gray, existing, continuous);
+  const std::vector<cv::Point2f> grid = detector_.detect(gray, existing, continuous, response_scale_);
   found.insert(found.end(), grid.begin(), grid.end());
   existing.insert(existing.end(), grid.begin(), grid.end());
   // Too few corners above the response to hold the homography on the ground (on `fastcam`, 30-110
@@ -343,7 +364,7 @@ void MotionEstimator::Impl::detect_new_features(const cv::Mat& gray, bool contin
   if (options_.sparse_response_factor < 1.0 &&
       static_cast<double>(existing.size()) < options_.sparse_features_fraction * options_.max_features) {
     MotionOptions weaker = options_;
-    weaker.min_corner_response *= options_.sparse_response_factor;
+    weaker.min_corner_response *= options_.sparse_response_factor * response_scale_;
     const std::vector<cv::Point2f> weak = detect_missing_corners(gray, existing, weaker);
     found.insert(found.end(), weak.begin(), weak.end());
   }

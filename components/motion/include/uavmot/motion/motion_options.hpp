@@ -17,7 +17,16 @@ struct MotionOptions {
   int features_per_cell = 1;        // target features per grid cell
   double min_distance_px = 5.0;     // no new corner closer than this to any live feature
   int corner_block_size = 5;        // Shi-Tomasi neighbourhood (px)
-  double min_corner_response = 2e-3;  // absolute minimum eigenvalue (cv::cornerMinEigenVal units)
+  double min_corner_response = 2e-3;  // minimum eigenvalue (cv::cornerMinEigenVal units) at full contrast
+  // Low contrast (haze, a dim sensor, dark cars on dark asphalt) weakens every corner by the square
+  // of the contrast: in a frame whose 99th-percentile gradient is below contrast_reference_grey
+  // (grey levels per pixel) min_corner_response counts (gradient / reference)^2 of itself, at least
+  // contrast_min_scale. 0 = off.
+  double contrast_reference_grey = 26.0;
+  double contrast_min_scale = 0.5;
+  // In such a frame a feature not yet moving whose LK window has faded below this x the frame's
+  // corner threshold (noise on a weak corner, an edge it slides along) does not start moving. 0 = off.
+  double faded_corner_ratio = 0.5;
   int border_px = 6;                // features this close to the image border are not used
   int empty_cell_retry_frames = 4;  // a cell that gave no new corner waits this many frames (staggered)
   // A frame left with fewer than sparse_features_fraction x max_features live features (blur from
@@ -139,6 +148,9 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("min_distance_px", o.min_distance_px, Range<double>{1.0, 256.0});
   visit("corner_block_size", o.corner_block_size, Range<int>{3, 15});
   visit("min_corner_response", o.min_corner_response, Range<double>{0.0, 1.0});
+  visit("contrast_reference_grey", o.contrast_reference_grey, Range<double>{0.0, 255.0});
+  visit("contrast_min_scale", o.contrast_min_scale, Range<double>{0.0, 1.0});
+  visit("faded_corner_ratio", o.faded_corner_ratio, Range<double>{0.0, 10.0});
   visit("border_px", o.border_px, Range<int>{0, 256});
   visit("empty_cell_retry_frames", o.empty_cell_retry_frames, Range<int>{1, 1000});
   visit("sparse_features_fraction", o.sparse_features_fraction, Range<double>{0.0, 1.0});
