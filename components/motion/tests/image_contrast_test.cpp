@@ -41,7 +41,7 @@ TEST(GradientPercentile, ARampGivesItsSlopeAtEveryPercentile) {
 TEST(GradientPercentile, HalvingTheContrastHalvesIt) {
   const double full = gradient_percentile(texture(1.0), 99.0, 8);
   const double half = gradient_percentile(texture(0.5), 99.0, 8);
-  ASSERT_GT(full, 20.0);
+  ASSERT_GT(full, 10.0);  // enough half-level bins for a 5 % check
   EXPECT_NEAR(half / full, 0.5, 0.05);
 }
 
