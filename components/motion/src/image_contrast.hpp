@@ -8,8 +8,9 @@
 namespace uavmot::motion {
 
 // The `percentile` (0-100) of the gradient magnitude of `gray` (CV_8UC1), in grey levels per pixel
-// (central differences halved), over every `row_step`-th row and every second column: a strong
-// edge's height, not its count. 0 for an image smaller than 3 x 3.
+// (central differences halved, rounded down to half levels), over every `row_step`-th row and every
+// second column: a strong edge's height, not its count. 0 for an image smaller than 3 x 3 or not
+// CV_8UC1.
 double gradient_percentile(const cv::Mat& gray, double percentile, int row_step);
 
 // The factor on min_corner_response for a frame whose gradient_percentile is `contrast`: the
