@@ -130,13 +130,27 @@ double intersection_over_union(const OrientedBox& a, const OrientedBox& b) {
   return uni > 0.0 ? inter / uni : 0.0;
 }
 
-cv::Point2d to_box_coordinates(const OrientedBox& box, const cv::Point2d& point) {
+BoxFrame::BoxFrame(const OrientedBox& box) : box_(box) {
   const double a = deg_to_rad(box.angle_deg);
-  const double dx = point.x - box.cx;
-  const double dy = point.y - box.cy;
-  const double along = dx * std::cos(a) + dy * std::sin(a);
-  const double across = -dx * std::sin(a) + dy * std::cos(a);
-  return {box.length > 0.0 ? along / box.length : 0.0, box.width > 0.0 ? across / box.width : 0.0};
+  cos_ = std::cos(a);
+  sin_ = std::sin(a);
+}
+
+cv::Point2d BoxFrame::to_box_coordinates(const cv::Point2d& point) const {
+  const double dx = point.x - box_.cx;
+  const double dy = point.y - box_.cy;
+  const double along = dx * cos_ + dy * sin_;
+  const double across = -dx * sin_ + dy * cos_;
+  return {box_.length > 0.0 ? along / box_.length : 0.0, box_.width > 0.0 ? across / box_.width : 0.0};
+}
+
+bool BoxFrame::contains(const cv::Point2d& point) const {
+  const cv::Point2d uv = to_box_coordinates(point);
+  return std::abs(uv.x) <= 0.5 && std::abs(uv.y) <= 0.5;
+}
+
+cv::Point2d to_box_coordinates(const OrientedBox& box, const cv::Point2d& point) {
+  return BoxFrame(box).to_box_coordinates(point);
 }
 
 cv::Point2d from_box_coordinates(const OrientedBox& box, const cv::Point2d& uv) {
@@ -146,10 +160,7 @@ cv::Point2d from_box_coordinates(const OrientedBox& box, const cv::Point2d& uv) 
   return {box.cx + along * std::cos(a) - across * std::sin(a), box.cy + along * std::sin(a) + across * std::cos(a)};
 }
 
-bool box_contains(const OrientedBox& box, const cv::Point2d& point) {
-  const cv::Point2d uv = to_box_coordinates(box, point);
-  return std::abs(uv.x) <= 0.5 && std::abs(uv.y) <= 0.5;
-}
+bool box_contains(const OrientedBox& box, const cv::Point2d& point) { return BoxFrame(box).contains(point); }
 
 bool is_finite(const OrientedBox& box) {
   return std::isfinite(box.cx) && std::isfinite(box.cy) && std::isfinite(box.width) && std::isfinite(box.length) &&

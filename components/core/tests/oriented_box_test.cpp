@@ -67,6 +67,28 @@ TEST(OrientedBox, BoxCoordinatesRoundTripAndContainment) {
   EXPECT_FALSE(box_contains(box, from_box_coordinates(box, {0.51, 0.0})));
 }
 
+// BoxFrame (one box, many points) against OpenCV's polygon test on the box's corners, on a grid of
+// points around boxes at several angles; points within a hair of the outline are left out.
+TEST(OrientedBox, BoxFrameAgreesWithThePolygonOfTheCorners) {
+  for (const double angle : {-89.0, -35.0, 0.0, 12.5, 45.0, 90.0}) {
+    const OrientedBox box{50.3, 40.7, 6.0, 15.0, angle};
+    const BoxFrame frame(box);
+    const auto corners = box_corners(box);
+    const std::vector<cv::Point2f> polygon(corners.begin(), corners.end());
+    int inside = 0;
+    for (double y = 30.0; y <= 52.0; y += 0.37) {
+      for (double x = 40.0; x <= 62.0; x += 0.37) {
+        const double distance = cv::pointPolygonTest(polygon, cv::Point2f(static_cast<float>(x), static_cast<float>(y)), true);
+        if (std::abs(distance) < 1e-3) continue;
+        EXPECT_EQ(frame.contains({x, y}), distance > 0.0) << "angle " << angle << " at " << x << ", " << y;
+        EXPECT_EQ(box_contains(box, {x, y}), frame.contains({x, y}));
+        inside += frame.contains({x, y}) ? 1 : 0;
+      }
+    }
+    EXPECT_NEAR(inside * 0.37 * 0.37, box_area(box), 0.1 * box_area(box));
+  }
+}
+
 TEST(OrientedBox, DetectsNonFiniteValues) {
   EXPECT_TRUE(is_finite(OrientedBox{1, 2, 3, 4, 5}));
   EXPECT_FALSE(is_finite(OrientedBox{1, NAN, 3, 4, 5}));

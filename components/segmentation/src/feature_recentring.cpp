@@ -8,17 +8,19 @@ std::vector<cv::Point2d> features_within(const OrientedBox& box, double margin_p
   OrientedBox grown = box;
   grown.length += 2.0 * margin_px;
   grown.width += 2.0 * margin_px;
+  const BoxFrame frame(grown);
   std::vector<cv::Point2d> inside;
   for (const auto& p : points) {
-    if (box_contains(grown, p)) inside.push_back(p);
+    if (frame.contains(p)) inside.push_back(p);
   }
   return inside;
 }
 
 double mean_offset_across(const OrientedBox& box, const std::vector<cv::Point2d>& points) {
   if (points.empty()) return 0.0;
+  const BoxFrame frame(box);
   double sum = 0.0;  // across, in widths
-  for (const auto& p : points) sum += to_box_coordinates(box, p).y;
+  for (const auto& p : points) sum += frame.to_box_coordinates(p).y;
   return sum / static_cast<double>(points.size()) * box.width;
 }
 

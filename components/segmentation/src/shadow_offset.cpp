@@ -74,7 +74,17 @@ ShadowOffset::ShadowOffset(ShadowOffsetOptions options)
     : options_(bounded(options)),
       half_(options_.step_px > 0.0 ? static_cast<int>(std::floor(options_.max_offset_px / options_.step_px)) : 0),
       score_(static_cast<size_t>((2 * half_ + 1) * (2 * half_ + 1)), 0.0), odd_(score_.size(), 0.0),
-      band_darkness_(score_.size(), 0.0), band_pixels_(score_.size(), 0.0) {}
+      band_darkness_(score_.size(), 0.0), band_pixels_(score_.size(), 0.0) {
+  const double step = options_.step_px, reach = half_ * step;
+  const int side = 2 * half_ + 1;
+  for (int row = 0; row < side; ++row) {
+    for (int col = 0; col < side; ++col) {
+      const double sx = (col - half_) * step, sy = (row - half_) * step;
+      if (std::hypot(sx, sy) > reach) continue;
+      candidates_.push_back({static_cast<size_t>(row * side + col), sx, sy});
+    }
+  }
+}
 
 void ShadowOffset::reset() {
   std::fill(score_.begin(), score_.end(), 0.0);
@@ -135,22 +145,17 @@ void ShadowOffset::observe(const cv::Mat& gray, cv::Point origin, const Oriented
   }
   along.accumulate();
   across.accumulate();
-  const int side = 2 * half_ + 1;
-  for (int row = 0; row < side; ++row) {
-    for (int col = 0; col < side; ++col) {
-      const double sx = (col - half_) * step, sy = (row - half_) * step;
-      if (std::hypot(sx, sy) > reach) continue;
-      const double t_along = sx * ca + sy * sa, t_across = -sx * sa + sy * ca;
-      // The body is what is left of the box: at least a pixel each way.
-      if (std::abs(t_along) > box.length - 1.0 || std::abs(t_across) > box.width - 1.0) continue;
-      const AxisBands::Band a_band = along.band(t_along, step), c_band = across.band(t_across, step);
-      const double vote = a_band.vote + c_band.vote;
-      const auto cell = static_cast<size_t>(row * side + col);
-      score_[cell] += vote;
-      if (votes_ % 2 == 1) odd_[cell] += vote;
-      band_darkness_[cell] += a_band.darkness + c_band.darkness;
-      band_pixels_[cell] += a_band.pixels + c_band.pixels;
-    }
+  const bool odd = votes_ % 2 == 1;
+  for (const Candidate& s : candidates_) {
+    const double t_along = s.sx * ca + s.sy * sa, t_across = -s.sx * sa + s.sy * ca;
+    // The body is what is left of the box: at least a pixel each way.
+    if (std::abs(t_along) > box.length - 1.0 || std::abs(t_across) > box.width - 1.0) continue;
+    const AxisBands::Band a_band = along.band(t_along, step), c_band = across.band(t_across, step);
+    const double vote = a_band.vote + c_band.vote;
+    score_[s.cell] += vote;
+    if (odd) odd_[s.cell] += vote;
+    band_darkness_[s.cell] += a_band.darkness + c_band.darkness;
+    band_pixels_[s.cell] += a_band.pixels + c_band.pixels;
   }
   ++votes_;
 }

@@ -63,6 +63,7 @@ std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const Orient
   const cv::Matx22d jacobian = homography_jacobian(previous_from_current, cv::Point2d(box.cx, box.cy));
   std::vector<cv::Point2d> offsets;
   for (const cv::Point2d& s : shifts) offsets.push_back(-(jacobian * cv::Vec2d(s.x, s.y)));
+  const BoxFrame frame(box);
   int inside = 0;
   ShiftErrors e;
   std::vector<double> moved_error(shifts.size(), 0.0);
@@ -70,7 +71,7 @@ std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const Orient
     const uint8_t* row = current.pixels.ptr<uint8_t>(y - current.roi.y);
     for (int x = bounds.x; x < bounds.br().x; ++x) {
       const cv::Point2d p(x, y);
-      if (!box_contains(box, p)) continue;
+      if (!frame.contains(p)) continue;
       ++inside;
       const cv::Point2d at_rest = apply_homography(previous_from_current, p);
       bool held = holds(*source, at_rest);

@@ -45,9 +45,10 @@ const TrackedFeature* FeatureIndex::find_linked(const FeatureLink& link) const {
 }
 
 std::vector<int> FeatureIndex::inside(const OrientedBox& box) const {
+  const BoxFrame frame(box);
   std::vector<int> out;
   for (const int i : grid_.query(axis_aligned_bounds(box))) {
-    if (box_contains(box, features_[static_cast<size_t>(i)].position)) out.push_back(i);
+    if (frame.contains(features_[static_cast<size_t>(i)].position)) out.push_back(i);
   }
   return out;
 }

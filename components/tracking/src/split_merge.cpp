@@ -36,10 +36,11 @@ namespace {
 
 // How many of the track's linked features lie inside `box`.
 int linked_features_inside(const TrackRecord& track, const OrientedBox& box, const FeatureIndex& features) {
+  const BoxFrame frame(box);
   int n = 0;
   for (const auto& link : track.features) {
     const TrackedFeature* f = features.find_linked(link);
-    if (f != nullptr && box_contains(box, f->position)) ++n;
+    if (f != nullptr && frame.contains(f->position)) ++n;
   }
   return n;
 }

@@ -56,6 +56,13 @@ class ShadowOffset {
  private:
   ShadowOffsetOptions options_;
   int half_;                    // candidates per side: the grid is (2 half_ + 1)^2
+  // The grid's cells within the search radius and their offsets, listed once: every region scores
+  // the same candidates.
+  struct Candidate {
+    size_t cell;
+    double sx, sy;
+  };
+  std::vector<Candidate> candidates_;
   std::vector<double> score_;   // row-major, s = ((col - half_) step, (row - half_) step)
   std::vector<double> odd_;     // the same for every second vote only
   std::vector<double> band_darkness_, band_pixels_;  // each candidate's shadow bands alone
