@@ -26,7 +26,7 @@ void build_pyramid(const cv::Mat& gray, const MotionOptions& o, Pyramid& pyramid
 constexpr float kLkEigenPerCornerResponse = 16.0f;
 
 void track_features(const Pyramid& previous, const Pyramid& current, const std::vector<cv::Point2f>& from,
-                    const std::vector<cv::Point2f>& guess, const MotionOptions& o, std::vector<cv::Point2f>& to,
+                    const std::vector<cv::Point2f>& guess, int levels, const MotionOptions& o, std::vector<cv::Point2f>& to,
                     std::vector<unsigned char>& tracked, std::vector<float>& corner_strength) {
   tracked.assign(from.size(), 0);
   corner_strength.assign(from.size(), 0.0f);
@@ -38,7 +38,7 @@ void track_features(const Pyramid& previous, const Pyramid& current, const std::
   std::vector<unsigned char> forward_ok, backward_ok;
   std::vector<float> error;
   std::vector<float> min_eigen;  // of each window in `previous` at full resolution; the flag changes nothing else
-  cv::calcOpticalFlowPyrLK(previous.levels, current.levels, from, to, forward_ok, min_eigen, window, o.pyramid_levels,
+  cv::calcOpticalFlowPyrLK(previous.levels, current.levels, from, to, forward_ok, min_eigen, window, levels,
                            criteria, cv::OPTFLOW_USE_INITIAL_FLOW | cv::OPTFLOW_LK_GET_MIN_EIGENVALS);
   // Backward from the answer, starting at the original position: a consistent track needs no
   // coarse levels to come back, so this costs a fraction of the forward pass.

@@ -21,12 +21,13 @@ struct Pyramid {
 // Builds the pyramid of `gray` into `pyramid`, reusing its buffers when the size matches.
 void build_pyramid(const cv::Mat& gray, const MotionOptions& options, Pyramid& pyramid);
 
-// Tracks `from` (in `previous`) into `current`, starting at `guess`. `tracked[i]` is set where the
+// Tracks `from` (in `previous`) into `current`, starting at `guess`, on `levels` pyramid levels above
+// full resolution (at most the pyramids'). `tracked[i]` is set where the
 // forward track converged, the backward track returns within max_forward_backward_px and the
 // result lies border_px inside the image. `corner_strength[i]` is the minimum eigenvalue of the
 // point's LK window in `previous`, in min_corner_response's units (cv::cornerMinEigenVal's).
 void track_features(const Pyramid& previous, const Pyramid& current, const std::vector<cv::Point2f>& from,
-                    const std::vector<cv::Point2f>& guess, const MotionOptions& options,
+                    const std::vector<cv::Point2f>& guess, int levels, const MotionOptions& options,
                     std::vector<cv::Point2f>& to, std::vector<unsigned char>& tracked,
                     std::vector<float>& corner_strength);
 

@@ -195,11 +195,11 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   std::vector<size_t> index;  // into features_
   std::vector<float> strength;  // per tracked feature, as src
   RobustHomography robust;
-  auto attempt = [&](const std::vector<cv::Point2f>& guess) {
+  auto attempt = [&](const std::vector<cv::Point2f>& guess, int levels) {
     std::vector<cv::Point2f> to;
     std::vector<unsigned char> tracked;
     std::vector<float> strengths;
-    track_features(previous_, current, from, guess, o, to, tracked, strengths);
+    track_features(previous_, current, from, guess, levels, o, to, tracked, strengths);
     src.clear();
     dst.clear();
     index.clear();
@@ -226,7 +226,8 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
       p = cv::Point2f(static_cast<float>(q.x), static_cast<float>(q.y));
     }
   }
-  bool ok = attempt(guess);
+  bool ok = attempt(guess, o.lk_quick_levels);
+  if (!ok && o.lk_quick_levels < o.pyramid_levels) ok = attempt(guess, o.pyramid_levels);
   if (!ok && o.recover_large_motion) {
     // The camera jumped (dropped frames, a jerk): start again from a coarse global translation.
     bool confident = false;
@@ -235,7 +236,7 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
       for (size_t i = 0; i < from.size(); ++i) {
         guess[i] = from[i] + cv::Point2f(static_cast<float>(shift.x), static_cast<float>(shift.y));
       }
-      ok = attempt(guess);
+      ok = attempt(guess, o.pyramid_levels);
     }
   }
   if (!ok) return false;

@@ -38,6 +38,9 @@ MotionOptions load_motion_options(const ConfigNode& node) {
   if (o.backward_levels > o.pyramid_levels) {
     node.fail("backward_levels", "must not exceed pyramid_levels (" + std::to_string(o.pyramid_levels) + ")");
   }
+  if (o.lk_quick_levels > o.pyramid_levels) {
+    node.fail("lk_quick_levels", "must not exceed pyramid_levels (" + std::to_string(o.pyramid_levels) + ")");
+  }
   return o;
 }
 
@@ -63,6 +66,8 @@ void validate(const MotionOptions& o) {
   require(o.pyramid_levels >= 0 && o.pyramid_levels <= 6, "pyramid_levels must be in [0, 6]");
   require(o.backward_levels >= 0 && o.backward_levels <= o.pyramid_levels,
           "backward_levels must be in [0, pyramid_levels]");
+  require(o.lk_quick_levels >= 0 && o.lk_quick_levels <= o.pyramid_levels,
+          "lk_quick_levels must be in [0, pyramid_levels]");
   require(o.lk_max_iterations >= 1 && o.lk_epsilon_px > 0.0, "LK stopping criteria must be positive");
   require(o.max_forward_backward_px > 0.0, "max_forward_backward_px must be > 0");
   require(o.max_step_error_px >= 0.0, "max_step_error_px must be >= 0 (0 turns the slip check off)");

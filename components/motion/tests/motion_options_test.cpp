@@ -45,6 +45,7 @@ TEST(MotionOptions, RejectsBadValuesNamingTheKey) {
   expect_error("lk_window_px: 12\n", "lk_window_px");
   expect_error("lk_window_px: 3\n", "lk_window_px");
   expect_error("pyramid_levels: 9\n", "pyramid_levels");
+  expect_error("pyramid_levels: 1\nlk_quick_levels: 2\n", "lk_quick_levels");
   expect_error("robust_method: lmeds\n", "robust_method");
   expect_error("min_track_frames: 20\nhistory_frames: 10\n", "min_track_frames");
   expect_error("ransac_threshold_px: nan\n", "ransac_threshold_px");

@@ -49,6 +49,11 @@ struct MotionOptions {
   // with the ground around them.
   int lk_window_px = 0;
   int pyramid_levels = 4;           // levels above the full-resolution image (maxLevel)
+  // Levels of a frame's first tracking attempt, from the predicted positions: the prediction is
+  // within a few pixels in smooth flight, and the coarse levels cost as much per feature as the
+  // fine ones. A frame whose attempt gives no valid homography (a jump, dropped frames) is tracked
+  // again with all pyramid_levels.
+  int lk_quick_levels = 2;
   int lk_max_iterations = 20;
   double lk_epsilon_px = 0.01;      // stop when an update is smaller than this
   int backward_levels = 0;          // pyramid levels for the backward check (starts at the answer)
@@ -161,6 +166,7 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("change_min_grey", o.change_min_grey, Range<double>{0.0, 255.0});
   visit("lk_window_px", o.lk_window_px, Range<int>{0, 63});  // 0 or odd >= 5: load_motion_options
   visit("pyramid_levels", o.pyramid_levels, Range<int>{0, 6});
+  visit("lk_quick_levels", o.lk_quick_levels, Range<int>{0, 6});
   visit("lk_max_iterations", o.lk_max_iterations, Range<int>{1, 200});
   visit("lk_epsilon_px", o.lk_epsilon_px, Range<double>{1e-5, 1.0});
   visit("backward_levels", o.backward_levels, Range<int>{0, 6});
