@@ -5,6 +5,7 @@
 #include <cstring>
 #include <deque>
 #include <limits>
+#include <mutex>
 #include <string>
 #include <type_traits>
 #include <utility>
@@ -93,6 +94,12 @@ class MotionEstimator::Impl {
     parallax_.reset();
   }
   const MotionOptions& options() const { return options_; }
+  // prepare() builds into the buffers of a prepared frame process() has finished with, when there
+  // is one: a pyramid allocated afresh every frame had its pages faulted in and zeroed by the kernel
+  // every frame (at 4K, levels above glibc's 32 MB mmap threshold: more system time than the
+  // pyramid's own build, and --threads 2 was slower than 1). Both run beside each other, hence the lock.
+  std::unique_ptr<PreparedFrame::Data> take_recycled() const;
+  void recycle(std::unique_ptr<PreparedFrame::Data> data) const;
   std::vector<uint8_t> save_state() const;
   void restore_state(const std::vector<uint8_t>& bytes);
   int64_t last_frame_index() const { return last_frame_index_; }
@@ -110,6 +117,8 @@ class MotionEstimator::Impl {
   ParallaxFilter parallax_;
   Pyramid previous_;
   Pyramid spare_;  // buffers for the next frame's pyramid
+  mutable std::mutex recycled_mutex_;
+  mutable std::unique_ptr<PreparedFrame::Data> recycled_;  // see take_recycled()
   std::vector<LiveFeature> features_;  // ordered by id
   uint64_t next_id_ = 1;
   Homography last_motion_ = Homography::eye();
@@ -609,17 +618,30 @@ MotionEstimator& MotionEstimator::operator=(MotionEstimator&&) noexcept = defaul
 
 MotionEstimate MotionEstimator::process(const Frame& frame) { return impl_->process(frame, nullptr); }
 
+std::unique_ptr<PreparedFrame::Data> MotionEstimator::Impl::take_recycled() const {
+  const std::lock_guard lock(recycled_mutex_);
+  return recycled_ ? std::move(recycled_) : std::make_unique<PreparedFrame::Data>();
+}
+
+void MotionEstimator::Impl::recycle(std::unique_ptr<PreparedFrame::Data> data) const {
+  data->gray.release();  // never keep a reference to the caller's frame
+  const std::lock_guard lock(recycled_mutex_);
+  recycled_ = std::move(data);
+}
+
 PreparedFrame MotionEstimator::prepare(const Frame& frame) const {
   PreparedFrame prepared;
   if (!frame_problem(frame, impl_->options()).empty()) return prepared;  // process() says why
-  prepared.data_ = std::make_unique<PreparedFrame::Data>();
+  prepared.data_ = impl_->take_recycled();
   prepared.data_->gray = gray_of(frame);
   build_pyramid(prepared.data_->gray, impl_->options(), prepared.data_->pyramid);
   return prepared;
 }
 
 MotionEstimate MotionEstimator::process(const Frame& frame, PreparedFrame prepared) {
-  return impl_->process(frame, prepared.data_.get());
+  MotionEstimate out = impl_->process(frame, prepared.data_.get());
+  if (prepared.data_) impl_->recycle(std::move(prepared.data_));  // now holding the buffers of two frames ago
+  return out;
 }
 void MotionEstimator::reset() { impl_->reset(); }
 std::vector<uint8_t> MotionEstimator::save_state() const { return impl_->save_state(); }
