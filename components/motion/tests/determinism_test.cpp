@@ -1,5 +1,6 @@
 // Same input -> bit-identical output; bgr8 and mono8 give the same result.
 #include <cstring>
+#include <deque>
 
 #include <gtest/gtest.h>
 #include <opencv2/imgproc.hpp>
@@ -118,6 +119,28 @@ TEST(Determinism, PreparedFramesGiveTheSameResult) {
   }
   const Frame empty = test::make_frame(cv::Mat(), 13);
   EXPECT_THROW(prepared.process(empty, prepared.prepare(empty)), InputError);
+}
+
+TEST(Determinism, FramesPreparedAheadInRecycledBuffersGiveTheSameResult) {
+  // As the pipelined chain does: frames prepared two ahead of process(), into the buffers of frames
+  // process() has finished with, also when the frame size changes (the recycled buffers are then
+  // the wrong size and are replaced).
+  const auto sequence = moving_scene();
+  MotionEstimator plain(MotionOptions{}), prepared(MotionOptions{});
+  std::vector<Frame> frames;
+  for (int k = 1; k <= 14; ++k) {
+    cv::Mat image = sequence.frame(k);
+    if (k > 8) image = image(cv::Rect(10, 20, image.cols - 40, image.rows - 30)).clone();
+    frames.push_back(test::make_frame(image, k));
+  }
+  std::deque<PreparedFrame> ahead;
+  size_t next = 0;
+  for (const Frame& frame : frames) {
+    while (ahead.size() < 3 && next < frames.size()) ahead.push_back(prepared.prepare(frames[next++]));
+    PreparedFrame mine = std::move(ahead.front());
+    ahead.pop_front();
+    expect_identical(plain.process(frame), prepared.process(frame, std::move(mine)));
+  }
 }
 
 }  // namespace
