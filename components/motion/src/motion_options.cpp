@@ -39,7 +39,8 @@ MotionOptions load_motion_options(const ConfigNode& node) {
     node.fail("backward_levels", "must not exceed pyramid_levels (" + std::to_string(o.pyramid_levels) + ")");
   }
   if (o.lk_quick_levels > o.pyramid_levels) {
-    node.fail("lk_quick_levels", "must not exceed pyramid_levels (" + std::to_string(o.pyramid_levels) + ")");
+    node.fail("lk_quick_levels", "must not exceed pyramid_levels (" + std::to_string(o.pyramid_levels) +
+                                     "); its default is 2, so with fewer pyramid levels set it too");
   }
   return o;
 }
