@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <iterator>
 
 #include <fmt/format.h>
 #include <fmt/os.h>
@@ -78,12 +79,12 @@ void ResultFilesWriter::write_motion(const MotionEstimate& motion) {
   Homography h = motion.homography;
   if (!normalize_homography(h)) h = identity_homography();
   if (options_.write_features) {
-    std::string lines;
+    fmt::memory_buffer lines;  // a frame's ~1 500 lines formatted in place, no string per line
     for (const auto& f : motion.features) {
-      lines += fmt::format("{},{},{:.3f},{:.3f},{:.4f},{:.4f},{}\n", motion.frame_index, f.id, f.position.x, f.position.y,
-                           f.velocity[0], f.velocity[1], f.moving ? 1 : 0);
+      fmt::format_to(std::back_inserter(lines), "{},{},{:.3f},{:.3f},{:.4f},{:.4f},{}\n", motion.frame_index, f.id,
+                     f.position.x, f.position.y, f.velocity[0], f.velocity[1], f.moving ? 1 : 0);
     }
-    features_.append(lines);
+    features_.append(std::string_view(lines.data(), lines.size()));
   }
   // Last: homographies.txt marks the frame's motion whole (a continued run cuts features.csv to it).
   std::string line = std::to_string(motion.frame_index);

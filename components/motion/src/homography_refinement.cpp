@@ -1,6 +1,7 @@
 #include "homography_refinement.hpp"
 
 #include <cmath>
+#include <deque>
 #include <memory>
 
 #include <ceres/ceres.h>
@@ -56,18 +57,23 @@ Homography refine_homography(const Homography& initial, const std::vector<cv::Po
   double params[8];
   for (int i = 0; i < 8; ++i) params[i] = hn.val[i];
 
-  ceres::Problem::Options problem_options;
-  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
-  ceres::Problem problem(problem_options);
-  const auto loss = make_loss(o);
+  // The residual blocks live in one deque (cost functions cannot be moved), not one allocation
+  // each; the problem is built here from finite values, so Ceres's safety checks are skipped.
+  std::deque<SymmetricTransferError> costs;
   int seen = 0;
   for (size_t i = 0; i < src.size(); ++i) {
     if (!use[i] || seen++ % stride != 0) continue;
     const cv::Point3d p = tp * cv::Point3d(src[i].x, src[i].y, 1.0);
     const cv::Point3d q = tq * cv::Point3d(dst[i].x, dst[i].y, 1.0);
-    auto* cost = new SymmetricTransferError(p.x, p.y, q.x, q.y, 1.0 / tq(0, 0), 1.0 / tp(0, 0));
-    problem.AddResidualBlock(cost, loss.get(), params);
+    costs.emplace_back(p.x, p.y, q.x, q.y, 1.0 / tq(0, 0), 1.0 / tp(0, 0));
   }
+  ceres::Problem::Options problem_options;
+  problem_options.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.cost_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+  problem_options.disable_all_safety_checks = true;
+  ceres::Problem problem(problem_options);
+  const auto loss = make_loss(o);
+  for (SymmetricTransferError& cost : costs) problem.AddResidualBlock(&cost, loss.get(), params);
   ceres::Solver::Options solver_options;
   solver_options.linear_solver_type = ceres::DENSE_NORMAL_CHOLESKY;
   solver_options.num_threads = 1;

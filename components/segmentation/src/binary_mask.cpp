@@ -44,29 +44,33 @@ void fill_holes(cv::Mat& mask) {
   CV_Assert(mask.type() == CV_8UC1);
   const int rows = mask.rows, cols = mask.cols;
   if (rows == 0 || cols == 0) return;
-  // Background reachable from the border (4-connected) is outside; the rest is filled.
-  cv::Mat outside = cv::Mat::zeros(mask.size(), CV_8U);
-  std::vector<cv::Point> stack;
-  auto visit = [&](int x, int y) {
-    if (x < 0 || y < 0 || x >= cols || y >= rows) return;
-    if (mask.at<uchar>(y, x) != 0 || outside.at<uchar>(y, x) != 0) return;
-    outside.at<uchar>(y, x) = 1;
-    stack.emplace_back(x, y);
+  // Background reachable from the border (4-connected) is outside; the rest is filled. A
+  // continuous copy, indices into it and a stack of them: no per-pixel bounds logic of Mat::at.
+  cv::Mat state = mask.clone();  // continuous; 0 is background
+  uchar* s = state.data;
+  constexpr uchar kOutside = 1, kSet = 255;
+  for (int i = 0; i < rows * cols; ++i) s[i] = s[i] != 0 ? kSet : 0;
+  std::vector<int> stack;
+  auto visit = [&](int i) {
+    if (s[i] != 0) return;
+    s[i] = kOutside;
+    stack.push_back(i);
   };
-  for (int x = 0; x < cols; ++x) visit(x, 0), visit(x, rows - 1);
-  for (int y = 0; y < rows; ++y) visit(0, y), visit(cols - 1, y);
+  for (int x = 0; x < cols; ++x) visit(x), visit((rows - 1) * cols + x);
+  for (int y = 0; y < rows; ++y) visit(y * cols), visit(y * cols + cols - 1);
   while (!stack.empty()) {
-    const cv::Point p = stack.back();
+    const int i = stack.back();
     stack.pop_back();
-    visit(p.x + 1, p.y);
-    visit(p.x - 1, p.y);
-    visit(p.x, p.y + 1);
-    visit(p.x, p.y - 1);
+    const int x = i % cols;
+    if (x + 1 < cols) visit(i + 1);
+    if (x > 0) visit(i - 1);
+    if (i + cols < rows * cols) visit(i + cols);
+    if (i >= cols) visit(i - cols);
   }
   for (int y = 0; y < rows; ++y) {
     uchar* m = mask.ptr<uchar>(y);
-    const uchar* o = outside.ptr<uchar>(y);
-    for (int x = 0; x < cols; ++x) m[x] = o[x] ? 0 : 255;
+    const uchar* o = s + static_cast<size_t>(y) * cols;
+    for (int x = 0; x < cols; ++x) m[x] = o[x] == kOutside ? 0 : 255;
   }
 }
 

@@ -51,13 +51,24 @@ struct AxisBands {
   struct Band {
     double vote = 0.0, darkness = 0.0, pixels = 0.0;
   };
-  Band band(double t, double step) const {
-    const auto k = static_cast<size_t>(std::lround(std::abs(t) / step));
-    if (k == 0) return {};
-    const size_t i = std::min(k, plus.inside.size()) - 1;
-    const EdgeBands& far = t > 0.0 ? plus : minus;
-    const EdgeBands& near = t > 0.0 ? minus : plus;
-    return {far.inside[i] - near.outside[i], far.inside[i], far.inside_pixels[i]};
+  // Every band an offset can give, by its sign and its width in bins (0: none; wider than the
+  // bins: all of them), listed once per box, so that each of its thousands of candidates is a lookup.
+  struct Table {
+    std::vector<Band> plus, minus;  // [k]: the band of an offset k bins wide
+    const Band& band(double t, double step) const {
+      const auto k = std::min(static_cast<size_t>(std::lround(std::abs(t) / step)), plus.size() - 1);
+      return t > 0.0 ? plus[k] : minus[k];
+    }
+  };
+  Table table() const {
+    const size_t bins = plus.inside.size();
+    Table t{std::vector<Band>(bins + 1), std::vector<Band>(bins + 1)};
+    for (size_t k = 1; k <= bins; ++k) {
+      const size_t i = k - 1;
+      t.plus[k] = {plus.inside[i] - minus.outside[i], plus.inside[i], plus.inside_pixels[i]};
+      t.minus[k] = {minus.inside[i] - plus.outside[i], minus.inside[i], minus.inside_pixels[i]};
+    }
+    return t;
   }
 };
 
@@ -110,11 +121,12 @@ void ShadowOffset::observe(const cv::Mat& gray, cv::Point origin, const Oriented
   // Beyond the window the outside bands are missing, which counts as road (no darkness).
   const cv::Rect scan = pixel_bounds(outer) & window;
 
-  struct Pixel {
-    double u, v, grey;
-  };
-  std::vector<Pixel> pixels;
-  std::vector<double> road, body;
+  std::vector<Pixel>& pixels = pixels_;
+  std::vector<double>& road = road_;
+  std::vector<double>& body = body_;
+  pixels.clear();
+  road.clear();
+  body.clear();
   for (int y = scan.y; y < scan.br().y; ++y) {
     const uint8_t* row = gray.ptr<uint8_t>(y - origin.y);
     for (int x = scan.x; x < scan.br().x; ++x) {
@@ -145,12 +157,14 @@ void ShadowOffset::observe(const cv::Mat& gray, cv::Point origin, const Oriented
   }
   along.accumulate();
   across.accumulate();
+  const AxisBands::Table along_bands = along.table(), across_bands = across.table();
   const bool odd = votes_ % 2 == 1;
   for (const Candidate& s : candidates_) {
     const double t_along = s.sx * ca + s.sy * sa, t_across = -s.sx * sa + s.sy * ca;
     // The body is what is left of the box: at least a pixel each way.
     if (std::abs(t_along) > box.length - 1.0 || std::abs(t_across) > box.width - 1.0) continue;
-    const AxisBands::Band a_band = along.band(t_along, step), c_band = across.band(t_across, step);
+    const AxisBands::Band& a_band = along_bands.band(t_along, step);
+    const AxisBands::Band& c_band = across_bands.band(t_across, step);
     const double vote = a_band.vote + c_band.vote;
     score_[s.cell] += vote;
     if (odd) odd_[s.cell] += vote;

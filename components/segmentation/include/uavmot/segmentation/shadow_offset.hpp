@@ -67,6 +67,12 @@ class ShadowOffset {
   std::vector<double> odd_;     // the same for every second vote only
   std::vector<double> band_darkness_, band_pixels_;  // each candidate's shadow bands alone
   int votes_ = 0;
+  // Scratch of observe(), kept so that the many regions of a frame do not allocate.
+  struct Pixel {
+    double u, v, grey;
+  };
+  std::vector<Pixel> pixels_;
+  std::vector<double> road_, body_;
 };
 
 }  // namespace uavmot::segmentation
