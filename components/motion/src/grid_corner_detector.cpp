@@ -176,24 +176,40 @@ std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::
 
 std::vector<cv::Point2f> detect_changed_corners(const cv::Mat& gray, const cv::Mat& changed,
                                                 const std::vector<cv::Point2f>& existing, const MotionOptions& o,
-                                                int budget) {
+                                                int budget, ChangeBlobs* blobs) {
   std::vector<cv::Point2f> added;
   if (budget <= 0 || gray.empty() || changed.size() != gray.size()) return added;
   DetectionGrid grid(gray.size(), existing, o);
   if (grid.empty()) return added;
+  // Changed pixels per cell (within the usable area; with `blobs`, those of compact blobs only), in
+  // one pass over the mask.
+  std::vector<int> counts(static_cast<size_t>(grid.cols * grid.rows), 0);
+  const cv::Rect& usable = grid.usable;
+  for (int y = usable.y; y < usable.br().y; ++y) {
+    const uchar* row = changed.ptr<uchar>(y);
+    int* cell_counts = counts.data() + static_cast<size_t>(y / grid.cell) * grid.cols;
+    for (int x0 = usable.x; x0 < usable.br().x;) {
+      const int column = x0 / grid.cell, x1 = std::min(usable.br().x, (column + 1) * grid.cell);
+      int n = 0;
+      if (blobs == nullptr) {
+        for (int x = x0; x < x1; ++x) n += row[x] != 0;
+      } else {
+        for (int x = x0; x < x1; ++x) n += row[x] != 0 && blobs->compact_at(x, y);
+      }
+      cell_counts[column] += n;
+      x0 = x1;
+    }
+  }
   std::vector<std::pair<int, int>> to_search;  // (-changed pixels, cell): most changed first
   for (int index = 0; index < grid.cols * grid.rows; ++index) {
-    const cv::Rect area = grid.area(index);
-    if (area.width <= 0 || area.height <= 0) continue;
-    const int count = cv::countNonZero(changed(area));
-    if (count > 0) to_search.emplace_back(-count, index);
+    if (const int count = counts[static_cast<size_t>(index)]; count > 0) to_search.emplace_back(-count, index);
   }
   std::sort(to_search.begin(), to_search.end());
   for (const auto& [minus_count, index] : to_search) {
     if (budget <= 0) break;
     int placed = 0;
     for (const auto& c : cell_candidates(gray, grid.area(index), o)) {
-      if (!changed.at<uchar>(c.y, c.x)) continue;
+      if (!changed.at<uchar>(c.y, c.x) || (blobs != nullptr && !blobs->compact_at(c.x, c.y))) continue;
       const cv::Point2f p(static_cast<float>(c.x), static_cast<float>(c.y));
       if (!grid.buckets.is_free(p)) continue;
       grid.buckets.add(p);

@@ -9,6 +9,7 @@
 #include <opencv2/core/mat.hpp>
 #include <opencv2/core/types.hpp>
 
+#include "change_mask.hpp"
 #include "uavmot/motion/motion_options.hpp"
 
 namespace uavmot::motion {
@@ -31,9 +32,10 @@ std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::
 // with changed pixels, whatever it already holds, up to change_features_per_cell new ones there,
 // at least min_distance_px from every point of `existing` and from each other, at most `budget` in
 // all. Cells with the most changed pixels first (ties row-major), strongest corner first.
+// With `blobs`, only the pixels of compact blobs of `changed` count (ChangeBlobs, change_mask.hpp).
 std::vector<cv::Point2f> detect_changed_corners(const cv::Mat& gray, const cv::Mat& changed,
                                                 const std::vector<cv::Point2f>& existing, const MotionOptions& options,
-                                                int budget);
+                                                int budget, ChangeBlobs* blobs = nullptr);
 
 // The same, remembering cells that gave no new corner (flat ground, sky, a blank frame, or every
 // corner too close to a live feature) and searching them again only after `empty_cell_retry_frames`

@@ -108,7 +108,7 @@ class MotionEstimator::Impl {
   // Tracks the live features into `current`; returns whether the frame pair gave a valid
   // homography (then the survivors replace features_).
   bool track_and_estimate(const Pyramid& current, MotionEstimate& out);
-  void detect_new_features(const cv::Mat& gray, bool continuous);
+  void detect_new_features(const cv::Mat& gray, const Pyramid& current, bool continuous);
 
   MotionOptions options_;
   double flat_scene_min_speed_px_;  // the classifier's speed floor in frames without structure
@@ -182,7 +182,7 @@ MotionEstimate MotionEstimator::Impl::process(const Frame& frame, PreparedFrame:
   last_valid_ = valid;
   last_motion_ = valid ? out.homography : Homography::eye();
 
-  detect_new_features(gray_, valid);
+  detect_new_features(gray_, current, valid);
   std::swap(previous_, spare_);
   gray_.release();  // never keep a reference to the caller's buffer
   last_frame_index_ = frame.index;
@@ -354,15 +354,33 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   return true;
 }
 
-void MotionEstimator::Impl::detect_new_features(const cv::Mat& gray, bool continuous) {
+void MotionEstimator::Impl::detect_new_features(const cv::Mat& gray, const Pyramid& current, bool continuous) {
   std::vector<cv::Point2f> existing;
   existing.reserve(features_.size());
   for (const auto& f : features_) existing.push_back(f.position);
   std::vector<cv::Point2f> found;
-  if (continuous && options_.change_seed_features > 0 && !previous_.empty()) {
+  const double car_length_px = scene_.metres_to_px(scene_.vehicle_length_m);
+  const bool seed_on_change = options_.change_seed_features > 0 &&
+                              (options_.change_seed_max_car_cells <= 0.0 ||
+                               car_length_px < options_.change_seed_max_car_cells * detection_cell_size(options_, gray.size()));
+  if (continuous && seed_on_change && !previous_.empty()) {
     // Before the grid fills the budget: what moves matters more than coverage (change_mask.hpp).
-    const cv::Mat changed = changed_pixels(previous_.levels[0], gray, last_motion_, options_);
-    found = detect_changed_corners(gray, changed, existing, options_, options_.change_seed_features);
+    // On the half-size level when a car is still change_min_vehicle_width_px wide there, then back
+    // to full size (each of its pixels covers 2 x 2). Not coarser: a pixel of a coarser level marks
+    // a block of cells (on the interlaced aphill FMV that lit up sheds and roofs).
+    const bool half_size = current.levels.size() >= 4 && previous_.levels.size() >= 4 &&
+                           scene_.metres_to_px(scene_.vehicle_width_m) / 2.0 >= options_.change_min_vehicle_width_px;
+    cv::Mat changed;
+    if (!half_size) {
+      changed = changed_pixels(previous_.levels[0], gray, last_motion_, options_);
+    } else {
+      const Homography half(0.5, 0, 0, 0, 0.5, 0, 0, 0, 1);  // full-size pixels to the level's (pyrDown)
+      // levels[2]: the half-size image (buildOpticalFlowPyramid stores each level's derivatives after it).
+      const cv::Mat coarse = changed_pixels(previous_.levels[2], current.levels[2], half * last_motion_ * half.inv(), options_);
+      if (!coarse.empty()) cv::resize(coarse, changed, gray.size(), 0.0, 0.0, cv::INTER_NEAREST);
+    }
+    ChangeBlobs blobs(changed, options_.change_max_extent_lengths * car_length_px);
+    found = detect_changed_corners(gray, changed, existing, options_, options_.change_seed_features, &blobs);
     existing.insert(existing.end(), found.begin(), found.end());
   }
   const std::vector<cv::Point2f> grid = detector_.detect(gray, existing, continuous, response_scale_);

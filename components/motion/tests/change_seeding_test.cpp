@@ -5,6 +5,8 @@
 // gain drift do not light up.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <opencv2/imgproc.hpp>
 
 #include "change_mask.hpp"
@@ -84,6 +86,52 @@ TEST(ChangeSeeding, ACarInACellThatHoldsAGroundFeatureStillGetsACorner) {
   }
   EXPECT_TRUE(detect_changed_corners(gray, changed, existing, o, 0).empty()) << "no budget, no corner";
   EXPECT_TRUE(detect_changed_corners(gray, cv::Mat(gray.size(), CV_8UC1, cv::Scalar(0)), existing, o, 10).empty());
+}
+
+// A roof edge under parallax changes along its whole length, a thin line tens of pixels long; a car
+// changes at its two ends, within its length and its step. The long blob is no vehicle and seeds
+// nothing; the car's blob is compact.
+TEST(ChangeSeeding, ALongThinEdgeIsNoVehicleAndACarIs) {
+  cv::Mat ground(480, 640, CV_8UC1, cv::Scalar(100));
+  cv::rectangle(ground, cv::Rect(100, 100, 200, 120), cv::Scalar(170), cv::FILLED);  // a roof
+  const cv::Mat previous = ground.clone();
+  cv::Mat current(ground.size(), CV_8UC1, cv::Scalar(100));
+  cv::rectangle(current, cv::Rect(102, 100, 200, 120), cv::Scalar(170), cv::FILLED);  // its parallax: 2 px
+  cv::rectangle(previous, cv::Rect(400, 300, 14, 6), cv::Scalar(230), cv::FILLED);      // a car, 2 px on
+  cv::rectangle(current, cv::Rect(402, 300, 14, 6), cv::Scalar(230), cv::FILLED);
+  const cv::Mat changed = changed_pixels(previous, current, Homography::eye(), MotionOptions{});
+  ASSERT_EQ(cv::countNonZero(changed(cv::Rect(100, 100, 2, 120))), 240) << "the roof's left edge changed";
+  ASSERT_EQ(cv::countNonZero(changed(cv::Rect(400, 300, 2, 6))), 12) << "the car's back";
+  ChangeBlobs blobs(changed, 40.0);  // 3 lengths of a 13 px car
+  EXPECT_FALSE(blobs.compact_at(100, 150)) << "the roof's edge";
+  EXPECT_FALSE(blobs.compact_at(100, 100)) << "asked again: the same blob, known";
+  EXPECT_TRUE(blobs.compact_at(400, 302)) << "the car's back";
+  EXPECT_TRUE(blobs.compact_at(414, 302)) << "the car's front";
+  EXPECT_FALSE(blobs.compact_at(350, 350)) << "an unchanged pixel";
+  EXPECT_FALSE(blobs.compact_at(-1, 5)) << "outside the image";
+  ChangeBlobs off(changed, 0.0);
+  EXPECT_TRUE(off.compact_at(100, 150)) << "no limit: every blob is compact";
+
+  // Seeding: the roof's changed corners are seeded without the blob rule, only the car's with it.
+  const auto near_car = [](const cv::Point2f& p) { return cv::Rect(396, 296, 24, 14).contains(cv::Point(cvRound(p.x), cvRound(p.y))); };
+  const auto all = detect_changed_corners(current, changed, {}, MotionOptions{}, 100);
+  EXPECT_TRUE(std::any_of(all.begin(), all.end(), [&](const cv::Point2f& p) { return !near_car(p); })) << "roof corners";
+  ChangeBlobs fresh(changed, 40.0);
+  const auto compact = detect_changed_corners(current, changed, {}, MotionOptions{}, 100, &fresh);
+  ASSERT_FALSE(compact.empty());
+  for (const auto& p : compact) EXPECT_TRUE(near_car(p)) << p;
+
+  // The rule on its own: a bounding box as long as the limit is compact, one pixel more is not,
+  // diagonals included (8-connected), and a query from anywhere on a long blob says so.
+  cv::Mat mask(60, 60, CV_8UC1, cv::Scalar(0));
+  for (int i = 0; i < 20; ++i) mask.at<uchar>(2 + i, 2 + i) = 255;  // a diagonal, 20 x 20
+  mask(cv::Rect(30, 30, 19, 3)).setTo(255);                        // 19 px wide
+  ChangeBlobs limit19(mask, 19.0);
+  EXPECT_FALSE(limit19.compact_at(21, 21));
+  EXPECT_FALSE(limit19.compact_at(2, 2));
+  EXPECT_TRUE(limit19.compact_at(40, 31));
+  ChangeBlobs limit20(mask, 20.0);
+  EXPECT_TRUE(limit20.compact_at(10, 10));
 }
 
 }  // namespace

@@ -60,6 +60,12 @@ double covered_fraction(const OrientedBox& candidate, const OrientedBox& kept) {
 
 }  // namespace
 
+bool Segmenter::within_vehicle_size(const OrientedBox& box) const {
+  const auto& r = options_.regions;
+  return box.length <= r.max_length_factor * scene_.metres_to_px(scene_.vehicle_length_m) &&
+         box.width <= r.max_width_factor * scene_.metres_to_px(scene_.vehicle_width_m);
+}
+
 std::optional<Region> Segmenter::uncovered_features_region(const FeatureCluster& cluster,
                                                            const std::vector<cv::Point2d>& feature_positions,
                                                            const std::vector<Region>& regions) const {
@@ -294,10 +300,14 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
       ++stats_.windows_without_pixels;
     }
     if (options_.regions.fallback_to_cluster_box) {
+      // A box around features is held to the sizes a blob is held to: features strung along an
+      // edge longer than any vehicle are no vehicle.
       if (regions.empty()) {
-        ++stats_.fallback_regions;
-        regions.push_back(cluster_region(c));
-      } else if (auto extra = uncovered_features_region(c, feature_positions, regions)) {
+        if (within_vehicle_size(c.box)) {
+          ++stats_.fallback_regions;
+          regions.push_back(cluster_region(c));
+        }
+      } else if (auto extra = uncovered_features_region(c, feature_positions, regions); extra && within_vehicle_size(extra->box)) {
         ++stats_.fallback_regions;
         regions.push_back(*extra);
       }

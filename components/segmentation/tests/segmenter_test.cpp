@@ -199,6 +199,42 @@ TEST(Segmenter, FeaturesOfAnInvisibleCarKeepABoxBesideTheSegmentedOne) {
   EXPECT_EQ(Segmenter(no_fallback, test_scene()).process(s.frame, s.motion).regions.size(), 1u);
 }
 
+// Moving features strung along 120 px of flat grey (on real FMV: corners along a shimmering roof
+// edge) make one cluster, 8 car lengths long, and no blob: its box is no vehicle and is not
+// returned. The same features along 24 px (1.6 lengths) still give the cluster's box.
+TEST(Segmenter, AClusterBoxLongerThanAnyVehicleIsNoRegion) {
+  for (const int span_px : {120, 24}) {
+    Frame frame;
+    frame.stream_id = "test";
+    frame.index = 7;
+    frame.image = cv::Mat(160, 200, CV_8UC1, cv::Scalar(100));
+    MotionEstimate motion;
+    motion.stream_id = "test";
+    motion.frame_index = 7;
+    uint64_t id = 1;
+    for (int x = 40; x <= 40 + span_px; x += 6) {
+      TrackedFeature f;
+      f.id = id++;
+      f.position = {static_cast<double>(x), 80.0};
+      f.velocity = {1.5, 0.0};
+      f.velocity_sigma = 0.05;
+      f.age = 10;
+      f.moving = true;
+      motion.features.push_back(f);
+    }
+    Segmenter segmenter(SegmentationOptions{}, test_scene());
+    const auto result = segmenter.process(frame, motion);
+    ASSERT_EQ(result.clusters.size(), 1u) << span_px;
+    if (span_px == 120) {
+      EXPECT_TRUE(result.regions.empty()) << "a 120 px cluster box";
+      EXPECT_EQ(segmenter.last_stats().fallback_regions, 0u);
+    } else {
+      ASSERT_EQ(result.regions.size(), 1u) << "a 24 px cluster box";
+      EXPECT_EQ(result.regions[0].method, SegmentationMethod::Clustering);
+    }
+  }
+}
+
 TEST(Segmenter, CropPathGivesTheSameResultAsTheWholeFrame) {
   const Scene s = make_scene(kPair, {175, 160}, {2.0, 0.0});
   Segmenter segmenter(SegmentationOptions{}, test_scene());

@@ -37,11 +37,21 @@ struct MotionOptions {
   // Features seeded on change: corners on pixels that differ from the previous frame warped by the
   // homography (something moves there) are added first, even in cells that hold enough features
   // and when max_features is reached: at most this many per frame, change_features_per_cell per
-  // cell; 0 = off (the default: on the real clips it adds false boxes, docs/motion.md).
-  int change_seed_features = 0;
+  // cell; 0 = off. Only where a car (SceneInfo) is shorter than change_seed_max_car_cells detection
+  // cells: there a car fits in a cell that a ground corner already fills; a longer car spans free
+  // cells and gets corners from the grid (real FMV at 5 cm/px gained only false boxes; 0 = always).
+  int change_seed_features = 300;
+  double change_seed_max_car_cells = 2.0;
   int change_features_per_cell = 2;
   double change_threshold_sigma = 4.0;  // changed: |difference| above this many robust sigmas ...
   double change_min_grey = 12.0;        // ... and above this many grey levels
+  // A changed blob (8-connected) whose bounding box is longer than this many vehicle lengths
+  // (SceneInfo) on either side is not a vehicle (a car's change is its front and back edges, within
+  // its length plus its step) but 3-D structure under parallax, a long thin edge: no seeds there. 0 = off.
+  double change_max_extent_lengths = 3.0;
+  // The frame difference is taken on the half-size pyramid level when a car (SceneInfo) is still
+  // this many pixels wide there: at 1080p and 0.3 m/px, a quarter of the work.
+  double change_min_vehicle_width_px = 3.0;
 
   // --- Pyramidal Lucas-Kanade with forward-backward check ----------------------------------
   // Odd window side, or 0 (the default): from the scene, 11 unless cars are shorter than about
@@ -161,9 +171,12 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("sparse_features_fraction", o.sparse_features_fraction, Range<double>{0.0, 1.0});
   visit("sparse_response_factor", o.sparse_response_factor, Range<double>{0.0, 1.0});
   visit("change_seed_features", o.change_seed_features, Range<int>{0, 100000});
+  visit("change_seed_max_car_cells", o.change_seed_max_car_cells, Range<double>{0.0, 1000.0});
   visit("change_features_per_cell", o.change_features_per_cell, Range<int>{1, 64});
   visit("change_threshold_sigma", o.change_threshold_sigma, Range<double>{0.0, 100.0});
   visit("change_min_grey", o.change_min_grey, Range<double>{0.0, 255.0});
+  visit("change_max_extent_lengths", o.change_max_extent_lengths, Range<double>{0.0, 100.0});
+  visit("change_min_vehicle_width_px", o.change_min_vehicle_width_px, Range<double>{0.5, 1000.0});
   visit("lk_window_px", o.lk_window_px, Range<int>{0, 63});  // 0 or odd >= 5: load_motion_options
   visit("pyramid_levels", o.pyramid_levels, Range<int>{0, 6});
   visit("lk_quick_levels", o.lk_quick_levels, Range<int>{0, 6});

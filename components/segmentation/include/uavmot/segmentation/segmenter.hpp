@@ -90,6 +90,9 @@ class Segmenter {
   std::optional<Region> uncovered_features_region(const FeatureCluster& cluster,
                                                   const std::vector<cv::Point2d>& feature_positions,
                                                   const std::vector<Region>& regions) const;
+  // No longer and no wider than the largest region a blob may give (max_length_factor and
+  // max_width_factor times the scene's vehicle).
+  bool within_vehicle_size(const OrientedBox& box) const;
   std::vector<Region> segment_window(const cv::Mat& gray, const cv::Rect& window, const FeatureCluster& cluster,
                                      const std::vector<cv::Point2d>& feature_positions) const;
 
