@@ -135,14 +135,17 @@ cv::Mat changed_pixels(const cv::Mat& previous, const cv::Mat& current, const Ho
   return changed;
 }
 
-ChangeBlobs::ChangeBlobs(const cv::Mat& changed, double max_extent_px)
+ChangeBlobs::ChangeBlobs(const cv::Mat& changed, double max_extent_px, int scale)
     : changed_(changed),
-      max_extent_(max_extent_px > 0.0 ? static_cast<int>(std::min(std::floor(max_extent_px), 1e9)) : 0) {
-  CV_Assert(changed.empty() || changed.type() == CV_8UC1);
+      max_extent_(max_extent_px > 0.0 ? static_cast<int>(std::min(std::floor(max_extent_px), 1e9)) : 0),
+      scale_(scale) {
+  CV_Assert((changed.empty() || changed.type() == CV_8UC1) && scale >= 1);
 }
 
-bool ChangeBlobs::compact_at(int x, int y) {
-  if (x < 0 || y < 0 || x >= changed_.cols || y >= changed_.rows || changed_.at<uchar>(y, x) == 0) return false;
+bool ChangeBlobs::compact_at(int full_x, int full_y) {
+  if (full_x < 0 || full_y < 0) return false;
+  const int x = full_x / scale_, y = full_y / scale_;
+  if (x >= changed_.cols || y >= changed_.rows || changed_.at<uchar>(y, x) == 0) return false;
   if (max_extent_ <= 0) return true;
   if (verdict_.empty()) verdict_ = cv::Mat::zeros(changed_.size(), CV_8U);
   if (const uchar v = verdict_.at<uchar>(y, x); v != 0) return v == kCompact;
@@ -174,7 +177,7 @@ bool ChangeBlobs::compact_at(int x, int y) {
         visited_.push_back(j);
         stack_.push_back(j);
         x0 = std::min(x0, nx), x1 = std::max(x1, nx), y0 = std::min(y0, ny), y1 = std::max(y1, ny);
-        if (x1 - x0 + 1 > max_extent_ || y1 - y0 + 1 > max_extent_) {
+        if (scale_ * (x1 - x0 + 1) > max_extent_ || scale_ * (y1 - y0 + 1) > max_extent_) {  // in full-size pixels
           is_long = true;
           break;
         }

@@ -28,14 +28,17 @@ cv::Mat changed_pixels(const cv::Mat& previous, const cv::Mat& current, const Ho
 // a few hundred questions per frame cost far less than labelling the whole mask.
 class ChangeBlobs {
  public:
-  // `changed` must outlive this object. max_extent_px <= 0: every blob counts as compact.
-  ChangeBlobs(const cv::Mat& changed, double max_extent_px);
-  // False for an unchanged pixel.
+  // `changed` must outlive this object; it may be a mask of a coarser level, each of its pixels
+  // covering `scale` x `scale` full-size pixels. max_extent_px (full-size pixels) <= 0: every blob
+  // counts as compact.
+  ChangeBlobs(const cv::Mat& changed, double max_extent_px, int scale = 1);
+  // (x, y) in full-size pixels. False for an unchanged pixel.
   bool compact_at(int x, int y);
 
  private:
   const cv::Mat& changed_;
   int max_extent_;
+  int scale_;
   cv::Mat verdict_;  // CV_8U: 0 not yet known, kCompact, kLong
   std::vector<int> stack_, visited_;
 };

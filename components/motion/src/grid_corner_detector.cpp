@@ -176,28 +176,29 @@ std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::
 
 std::vector<cv::Point2f> detect_changed_corners(const cv::Mat& gray, const cv::Mat& changed,
                                                 const std::vector<cv::Point2f>& existing, const MotionOptions& o,
-                                                int budget, ChangeBlobs* blobs) {
+                                                int budget, ChangeBlobs* blobs, int scale) {
   std::vector<cv::Point2f> added;
-  if (budget <= 0 || gray.empty() || changed.size() != gray.size()) return added;
+  if (budget <= 0 || gray.empty() || scale < 1 ||
+      changed.size() != cv::Size((gray.cols + scale - 1) / scale, (gray.rows + scale - 1) / scale)) {
+    return added;
+  }
   DetectionGrid grid(gray.size(), existing, o);
   if (grid.empty()) return added;
-  // Changed pixels per cell (within the usable area; with `blobs`, those of compact blobs only), in
-  // one pass over the mask.
+  // Changed pixels per cell (within the usable area; with `blobs`, those of compact blobs only):
+  // each set pixel of the mask counts the full-size pixels it covers, in one pass over the mask.
   std::vector<int> counts(static_cast<size_t>(grid.cols * grid.rows), 0);
   const cv::Rect& usable = grid.usable;
-  for (int y = usable.y; y < usable.br().y; ++y) {
-    const uchar* row = changed.ptr<uchar>(y);
-    int* cell_counts = counts.data() + static_cast<size_t>(y / grid.cell) * grid.cols;
-    for (int x0 = usable.x; x0 < usable.br().x;) {
-      const int column = x0 / grid.cell, x1 = std::min(usable.br().x, (column + 1) * grid.cell);
-      int n = 0;
-      if (blobs == nullptr) {
-        for (int x = x0; x < x1; ++x) n += row[x] != 0;
-      } else {
-        for (int x = x0; x < x1; ++x) n += row[x] != 0 && blobs->compact_at(x, y);
+  for (int my = usable.y / scale; my <= (usable.br().y - 1) / scale; ++my) {
+    const uchar* row = changed.ptr<uchar>(my);
+    for (int mx = usable.x / scale; mx <= (usable.br().x - 1) / scale; ++mx) {
+      if (row[mx] == 0) continue;
+      const int y0 = std::max(usable.y, my * scale), y1 = std::min(usable.br().y, (my + 1) * scale);
+      const int x0 = std::max(usable.x, mx * scale), x1 = std::min(usable.br().x, (mx + 1) * scale);
+      if (blobs != nullptr && !blobs->compact_at(x0, y0)) continue;  // one blob for all it covers
+      for (int y = y0; y < y1; ++y) {
+        int* cell_counts = counts.data() + static_cast<size_t>(y / grid.cell) * grid.cols;
+        for (int x = x0; x < x1; ++x) ++cell_counts[x / grid.cell];
       }
-      cell_counts[column] += n;
-      x0 = x1;
     }
   }
   std::vector<std::pair<int, int>> to_search;  // (-changed pixels, cell): most changed first
@@ -209,7 +210,7 @@ std::vector<cv::Point2f> detect_changed_corners(const cv::Mat& gray, const cv::M
     if (budget <= 0) break;
     int placed = 0;
     for (const auto& c : cell_candidates(gray, grid.area(index), o)) {
-      if (!changed.at<uchar>(c.y, c.x) || (blobs != nullptr && !blobs->compact_at(c.x, c.y))) continue;
+      if (!changed.at<uchar>(c.y / scale, c.x / scale) || (blobs != nullptr && !blobs->compact_at(c.x, c.y))) continue;
       const cv::Point2f p(static_cast<float>(c.x), static_cast<float>(c.y));
       if (!grid.buckets.is_free(p)) continue;
       grid.buckets.add(p);

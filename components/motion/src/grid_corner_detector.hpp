@@ -33,9 +33,11 @@ std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::
 // at least min_distance_px from every point of `existing` and from each other, at most `budget` in
 // all. Cells with the most changed pixels first (ties row-major), strongest corner first.
 // With `blobs`, only the pixels of compact blobs of `changed` count (ChangeBlobs, change_mask.hpp).
+// `changed` may be a coarser level's mask, each of its pixels covering `scale` x `scale` pixels of
+// `gray` (its size then `gray`'s divided by `scale`, rounded up).
 std::vector<cv::Point2f> detect_changed_corners(const cv::Mat& gray, const cv::Mat& changed,
                                                 const std::vector<cv::Point2f>& existing, const MotionOptions& options,
-                                                int budget, ChangeBlobs* blobs = nullptr);
+                                                int budget, ChangeBlobs* blobs = nullptr, int scale = 1);
 
 // The same, remembering cells that gave no new corner (flat ground, sky, a blank frame, or every
 // corner too close to a live feature) and searching them again only after `empty_cell_retry_frames`

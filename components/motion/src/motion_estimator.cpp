@@ -365,22 +365,18 @@ void MotionEstimator::Impl::detect_new_features(const cv::Mat& gray, const Pyram
                                car_length_px < options_.change_seed_max_car_cells * detection_cell_size(options_, gray.size()));
   if (continuous && seed_on_change && !previous_.empty()) {
     // Before the grid fills the budget: what moves matters more than coverage (change_mask.hpp).
-    // On the half-size level when a car is still change_min_vehicle_width_px wide there, then back
-    // to full size (each of its pixels covers 2 x 2). Not coarser: a pixel of a coarser level marks
-    // a block of cells (on the interlaced aphill FMV that lit up sheds and roofs).
+    // On the half-size level when a car is still change_min_vehicle_width_px wide there (each of
+    // its pixels covers 2 x 2). Not coarser: a pixel of a coarser level marks a block of cells (on
+    // the interlaced aphill FMV that lit up sheds and roofs).
     const bool half_size = current.levels.size() >= 4 && previous_.levels.size() >= 4 &&
                            scene_.metres_to_px(scene_.vehicle_width_m) / 2.0 >= options_.change_min_vehicle_width_px;
-    cv::Mat changed;
-    if (!half_size) {
-      changed = changed_pixels(previous_.levels[0], gray, last_motion_, options_);
-    } else {
-      const Homography half(0.5, 0, 0, 0, 0.5, 0, 0, 0, 1);  // full-size pixels to the level's (pyrDown)
-      // levels[2]: the half-size image (buildOpticalFlowPyramid stores each level's derivatives after it).
-      const cv::Mat coarse = changed_pixels(previous_.levels[2], current.levels[2], half * last_motion_ * half.inv(), options_);
-      if (!coarse.empty()) cv::resize(coarse, changed, gray.size(), 0.0, 0.0, cv::INTER_NEAREST);
-    }
-    ChangeBlobs blobs(changed, options_.change_max_extent_lengths * car_length_px);
-    found = detect_changed_corners(gray, changed, existing, options_, options_.change_seed_features, &blobs);
+    const Homography half(0.5, 0, 0, 0, 0.5, 0, 0, 0, 1);  // full-size pixels to the level's (pyrDown)
+    // levels[2]: the half-size image (buildOpticalFlowPyramid stores each level's derivatives after it).
+    const cv::Mat changed = half_size ? changed_pixels(previous_.levels[2], current.levels[2], half * last_motion_ * half.inv(), options_)
+                                      : changed_pixels(previous_.levels[0], gray, last_motion_, options_);
+    const int scale = half_size ? 2 : 1;
+    ChangeBlobs blobs(changed, options_.change_max_extent_lengths * car_length_px, scale);
+    found = detect_changed_corners(gray, changed, existing, options_, options_.change_seed_features, &blobs, scale);
     existing.insert(existing.end(), found.begin(), found.end());
   }
   const std::vector<cv::Point2f> grid = detector_.detect(gray, existing, continuous, response_scale_);

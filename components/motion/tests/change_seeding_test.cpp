@@ -121,6 +121,20 @@ TEST(ChangeSeeding, ALongThinEdgeIsNoVehicleAndACarIs) {
   ASSERT_FALSE(compact.empty());
   for (const auto& p : compact) EXPECT_TRUE(near_car(p)) << p;
 
+  // A half-size mask (each pixel covering 2 x 2) seeds exactly what the same mask brought back to
+  // full size does (the chain takes the difference on the half-size level at 1080p).
+  cv::Mat coarse;
+  cv::resize(changed, coarse, cv::Size(320, 240), 0.0, 0.0, cv::INTER_AREA);
+  cv::threshold(coarse, coarse, 0, 255, cv::THRESH_BINARY);
+  cv::Mat upsampled;
+  cv::resize(coarse, upsampled, changed.size(), 0.0, 0.0, cv::INTER_NEAREST);
+  ChangeBlobs full_blobs(upsampled, 40.0), half_blobs(coarse, 40.0, 2);
+  const auto from_full = detect_changed_corners(current, upsampled, {}, MotionOptions{}, 100, &full_blobs);
+  const auto from_half = detect_changed_corners(current, coarse, {}, MotionOptions{}, 100, &half_blobs, 2);
+  ASSERT_FALSE(from_full.empty());
+  EXPECT_EQ(from_half, from_full);
+  EXPECT_TRUE(detect_changed_corners(current, coarse, {}, MotionOptions{}, 100, nullptr, 1).empty()) << "a mask of the wrong size";
+
   // The rule on its own: a bounding box as long as the limit is compact, one pixel more is not,
   // diagonals included (8-connected), and a query from anywhere on a long blob says so.
   cv::Mat mask(60, 60, CV_8UC1, cv::Scalar(0));
