@@ -4,7 +4,6 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
-#include <limits>
 
 #include <opencv2/imgproc.hpp>
 
@@ -29,13 +28,13 @@ std::vector<Span> valid_spans(const Homography& current_to_previous, cv::Size si
     const double c = h(1, 0), d = h(1, 1) * y + h(1, 2);
     const double e = h(2, 0), f = h(2, 1) * y + h(2, 2);
     double low = 0.0, high = size.width - 1.0;
-    // k x + m >= 0 (strict when `strict`) narrows [low, high].
+    // k x + m >= 0 narrows [low, high] (> 0 when `strict`: only a constant k = 0 tells them apart).
     auto require = [&](double k, double m, bool strict) {
       if (k > 0.0) low = std::max(low, -m / k);
       else if (k < 0.0) high = std::min(high, -m / k);
       else if (m < 0.0 || (strict && m == 0.0)) high = -1.0;
     };
-    require(e, f, true);               // in front of the camera
+    require(e, f, true);                         // in front of the camera
     require(a - lo_x * e, b - lo_x * f, false);  // x_source >= lo_x
     require(hi_x * e - a, hi_x * f - b, false);  // x_source <= hi_x
     require(c - lo_y * e, d - lo_y * f, false);
