@@ -62,8 +62,8 @@ double covered_fraction(const OrientedBox& candidate, const OrientedBox& kept) {
 
 bool Segmenter::within_vehicle_size(const OrientedBox& box) const {
   const auto& r = options_.regions;
-  return box.length <= r.max_length_factor * scene_.metres_to_px(scene_.vehicle_length_m) &&
-         box.width <= r.max_width_factor * scene_.metres_to_px(scene_.vehicle_width_m);
+  return !(box.length > r.max_length_factor * scene_.metres_to_px(scene_.vehicle_length_m) ||
+           box.width > r.max_width_factor * scene_.metres_to_px(scene_.vehicle_width_m));
 }
 
 std::optional<Region> Segmenter::uncovered_features_region(const FeatureCluster& cluster,
@@ -198,8 +198,8 @@ std::vector<Region> Segmenter::segment_window(const cv::Mat& gray, const cv::Rec
     group.box.cx += window.x;
     group.box.cy += window.y;
     const OrientedBox& box = group.box;
-    if (box.length < r.min_length_factor * vehicle_length || box.length > r.max_length_factor * vehicle_length ||
-        box.width < r.min_width_factor * vehicle_width || box.width > r.max_width_factor * vehicle_width) {
+    if (box.length < r.min_length_factor * vehicle_length || box.width < r.min_width_factor * vehicle_width ||
+        !within_vehicle_size(box)) {
       continue;
     }
     const int support = static_cast<int>(features_within(box, r.support_margin_px, feature_positions).size());
