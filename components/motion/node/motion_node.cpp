@@ -1,7 +1,7 @@
 // uavmot-motion: frames in (uavmot/frames), motion estimates out (uavmot/motion).
 // One MotionEstimator per stream; in live mode the newest frame wins and gaps count as drops.
 // With --state-dir, each estimator's state is saved after every frame, the last --state-keep of them
-// kept (motion_state_ring.hpp); a restarted instance restores the newest before the first frame it
+// kept (uavmot/core/state_ring.hpp); a restarted instance restores the newest before the first frame it
 // receives and continues from there with the same estimates as an uninterrupted run.
 
 #include <algorithm>
@@ -16,10 +16,10 @@
 
 #include "framePubSubTypes.h"
 #include "motionPubSubTypes.h"
-#include "motion_state_ring.hpp"
 #include "uavmot/config/chain_config.hpp"
 #include "uavmot/core/app.hpp"
 #include "uavmot/core/error.hpp"
+#include "uavmot/core/state_ring.hpp"
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/dds/single_input_node.hpp"
 #include "uavmot/motion/motion_estimator.hpp"
@@ -36,7 +36,7 @@ void keep_moving_features(msg::MotionEstimate& m) {
 
 struct StreamMotion {
   motion::MotionEstimator estimator;
-  std::optional<motion::MotionStateRing> states{};  // with --state-dir
+  std::optional<StateRing> states{};  // with --state-dir
   int64_t restored_frame = 0;  // frames up to this one are already in the restored state
   bool continued = false;      // a frame after the restored state was processed
   int64_t saved_frame = 0;     // the last frame whose state was saved
@@ -67,7 +67,7 @@ void restore_kept_state(StreamMotion& s, const std::string& stream, int64_t firs
                  *adopted, s.states->path(*adopted));
   }
   size_t bytes_restored = 0;
-  const auto choice = motion::restore_before(*s.states, first_frame, [&](const std::vector<uint8_t>& bytes) {
+  const auto choice = restore_before(*s.states, first_frame, [&](const std::vector<uint8_t>& bytes) {
     s.estimator.restore_state(bytes);
     bytes_restored = bytes.size();
     return s.estimator.last_frame_index();
@@ -116,7 +116,7 @@ int motion_main(int argc, char** argv) {
   int streams = 1;
   std::string features = "all";
   std::string state_dir;
-  int state_keep = motion::kDefaultStatesKept;
+  int state_keep = kDefaultStatesKept;
   return run_app(argc, argv, "motion", "estimate camera motion and independently moving features (frames -> motion)", [&](CLI::App& app) {
     config::add_node_config_options(app, config_args, "scene and motion");
     app.add_option("--streams", streams, "exit after this many streams ended")->check(uavmot::positive_finite())->capture_default_str();
@@ -149,7 +149,7 @@ int motion_main(int argc, char** argv) {
       auto estimator_for = [&](const std::string& stream, int64_t first_frame) -> StreamMotion& {
         auto [it, fresh] = estimators.try_emplace(stream, StreamMotion{motion::MotionEstimator(options, config.scene)});
         if (fresh && !state_dir.empty()) {
-          it->second.states.emplace(state_dir, stream, state_keep);
+          it->second.states.emplace(state_dir, "motion_state", stream, state_keep);
           restore_kept_state(it->second, stream, first_frame, options, config.scene);
         }
         return it->second;

@@ -23,9 +23,9 @@
 #include "klt_tracker.hpp"
 #include "parallax_filter.hpp"
 #include "relative_velocity.hpp"
-#include "state_codec.hpp"
 #include "structure_edges.hpp"
 #include "uavmot/core/checksum.hpp"
+#include "uavmot/core/state_codec.hpp"
 
 namespace uavmot::motion {
 namespace {

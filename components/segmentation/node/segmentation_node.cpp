@@ -1,12 +1,21 @@
 // uavmot-segmentation: frames + motion estimates in, clusters + regions out (uavmot/segmentation).
+// With --state-dir, each segmenter's state (the shift check's previous windows) is saved after every
+// frame, the last --state-keep kept (uavmot/core/state_ring.hpp); a new launch that starts after
+// frame K restores the state of K and segments K+1 as an uninterrupted run did.
 
+#include <filesystem>
 #include <map>
+#include <optional>
+
+#include <spdlog/spdlog.h>
 
 #include "framePubSubTypes.h"
 #include "motionPubSubTypes.h"
 #include "segmentationPubSubTypes.h"
 #include "uavmot/config/chain_config.hpp"
 #include "uavmot/core/app.hpp"
+#include "uavmot/core/error.hpp"
+#include "uavmot/core/state_ring.hpp"
 #include "uavmot/dds/node_options.hpp"
 #include "uavmot/dds/paired_node.hpp"
 #include "uavmot/segmentation/segmentation_options.hpp"
@@ -15,6 +24,31 @@
 namespace uavmot {
 namespace {
 
+struct StreamSegmentation {
+  segmentation::Segmenter segmenter;
+  std::optional<StateRing> states{};  // with --state-dir
+  int64_t saved_frame = 0;
+  uint64_t saves = 0;
+};
+
+// Restores the newest kept state before FIRST_FRAME, the first frame this process received of the
+// stream (the one of FIRST_FRAME - 1 continues exactly; an older one leaves the shift check out for
+// the first frame, as no state does).
+void restore_kept_state(StreamSegmentation& s, const std::string& stream, int64_t first_frame) {
+  const auto choice = restore_before(*s.states, first_frame, [&](const std::vector<uint8_t>& bytes) {
+    s.segmenter.restore_state(bytes);
+    return s.segmenter.last_frame_index();
+  });
+  for (const auto& refused : choice.refused) {
+    spdlog::warn("stream '{}': passed over a damaged segmentation state for an older one: {}", stream, refused);
+  }
+  if (choice.restored) {
+    spdlog::info("stream '{}': restored the segmentation state at frame {}: the newest kept before the first frame "
+                 "received ({})",
+                 stream, *choice.restored, first_frame);
+  }
+}
+
 int segmentation_main(int argc, char** argv) {
   dds::NodeOptions node;
   double upstream_timeout_s = 0.0;
@@ -22,6 +56,8 @@ int segmentation_main(int argc, char** argv) {
   std::string method;
   int streams = 1;
   bool resume = false;
+  std::string state_dir;
+  int state_keep = kDefaultStatesKept;
   return run_app(argc, argv, "segmentation", "segment moving objects (frames + motion -> clusters and regions)", [&](CLI::App& app) {
     config::add_node_config_options(app, config_args, "scene and segmentation");
     app.add_option("--segmentation", method, segmentation_method_choices())->check(CLI::IsMember(segmentation_method_names()));
@@ -29,6 +65,12 @@ int segmentation_main(int argc, char** argv) {
     app.add_flag("--resume", resume,
                  "after a crash (lossless): also read the writers' recent history, so the frame that reached the killed "
                  "process but not its output comes again (the frames already segmented come again too: readers skip them)");
+    app.add_option("--state-dir", state_dir,
+                   "save each stream's segmentation state (the previous frame's cluster windows) here after every "
+                   "frame and restore the one before the first frame received on start");
+    app.add_option("--state-keep", state_keep, "saved states kept per stream (the newest N)")
+        ->check(CLI::Range(1, 1000000))
+        ->capture_default_str();
     dds::add_upstream_timeout_option(app, upstream_timeout_s);
     dds::add_node_options(app, node);
     return [&]() -> int {
@@ -37,19 +79,44 @@ int segmentation_main(int argc, char** argv) {
       const auto config = config::load_node_config(config_args);
       auto options = config.layer("segmentation", segmentation::load_segmentation_options);
       if (!method.empty()) options.method = parse_segmentation_method(method);
+      if (!state_dir.empty()) std::filesystem::create_directories(state_dir);
       dds::Participant participant(node.dds);
-      std::map<std::string, segmentation::Segmenter> segmenters;
+      std::map<std::string, StreamSegmentation> streams_seen;
       using Node = dds::PairedNode<msg::FramePubSubType, msg::MotionEstimatePubSubType, msg::SegmentationPubSubType, Frame, MotionEstimate>;
       Node paired(participant,
                   {"segmentation", dds::kFramesTopic, dds::kMotionTopic, dds::kSegmentationTopic,
                    resume ? dds::TopicClass::FramesResume : dds::TopicClass::Frames,
                    resume ? dds::TopicClass::ChainResume : dds::TopicClass::Chain, streams, node.wait_subscribers,
                    upstream_timeout_s},
-                  [&](const std::string& stream, int64_t, const Frame& frame, const MotionEstimate& motion) {
-                    auto& segmenter = segmenters.try_emplace(stream, options, config.scene).first->second;
-                    return std::optional(dds::to_msg(segmenter.process(frame, motion)));
+                  [&](const std::string& stream, int64_t index, const Frame& frame, const MotionEstimate& motion) {
+                    auto [it, fresh] = streams_seen.try_emplace(stream, StreamSegmentation{segmentation::Segmenter(options, config.scene)});
+                    if (fresh && !state_dir.empty()) {
+                      it->second.states.emplace(state_dir, "segmentation_state", stream, state_keep);
+                      restore_kept_state(it->second, stream, index);
+                    }
+                    return std::optional(dds::to_msg(it->second.segmenter.process(frame, motion)));
+                  },
+                  // Saved once the frame's regions are out: a crash in between redoes the frame.
+                  [&](const std::string& stream, int64_t index) {
+                    StreamSegmentation& s = streams_seen.at(stream);
+                    if (!s.states) return;
+                    try {
+                      s.states->save(index, s.segmenter.save_state());
+                    } catch (const OutputError& e) {
+                      spdlog::warn("cannot write segmentation state: {}", e.what());
+                      return;
+                    }
+                    ++s.saves;
+                    s.saved_frame = index;
                   });
-      return paired.run();
+      const int code = paired.run();
+      for (const auto& [stream, s] : streams_seen) {
+        if (s.saves > 0) {
+          spdlog::info("stream '{}': segmentation state saved at frame {} in '{}' ({} saves, {} kept)", stream,
+                       s.saved_frame, s.states->path(s.saved_frame), s.saves, s.states->frames().size());
+        }
+      }
+      return code;
     };
   });
 }

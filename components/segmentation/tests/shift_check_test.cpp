@@ -167,6 +167,71 @@ TEST(ShiftCheck, TheSegmenterDropsAStaticMarkingBesideAMovingCar) {
   }
 }
 
+// The state a new process restores (Segmenter::save_state): the marking scene's frame 7 segmented
+// by a new segmenter with frame 6's saved state is frame 7 as the first segmenter gave it, the
+// marking dropped; a new one without it keeps the marking.
+TEST(SegmenterState, ARestoredSegmenterSegmentsTheNextFrameAsTheOneThatSavedIt) {
+  SceneInfo scene;
+  scene.gsd_m = 0.3;
+  scene.fps = 25.0;
+  const cv::Point2d marking(103.5, 87.0);
+  const MarkingScene first = marking_scene(6), second = marking_scene(7);
+  Segmenter saved(SegmentationOptions{}, scene);
+  EXPECT_EQ(saved.last_frame_index(), -1);
+  saved.process(first.frame, first.motion);
+  const std::vector<uint8_t> bytes = saved.save_state();
+
+  Segmenter restored(SegmentationOptions{}, scene);
+  restored.restore_state(bytes);
+  EXPECT_EQ(restored.last_frame_index(), 6);
+  EXPECT_EQ(restored.save_state(), bytes);
+  const auto expected = saved.process(second.frame, second.motion);
+  const auto got = restored.process(second.frame, second.motion);
+  EXPECT_FALSE(region_near(got, marking, 4.0)) << "the marking";
+  EXPECT_EQ(restored.last_stats().static_regions, 1u);
+  ASSERT_EQ(got.regions.size(), expected.regions.size());
+  for (size_t i = 0; i < got.regions.size(); ++i) {
+    EXPECT_EQ(got.regions[i].box.cx, expected.regions[i].box.cx);
+    EXPECT_EQ(got.regions[i].box.cy, expected.regions[i].box.cy);
+    EXPECT_EQ(got.regions[i].box.width, expected.regions[i].box.width);
+    EXPECT_EQ(got.regions[i].box.length, expected.regions[i].box.length);
+  }
+
+  Segmenter fresh(SegmentationOptions{}, scene);
+  EXPECT_TRUE(region_near(fresh.process(second.frame, second.motion), marking, 4.0)) << "no state: the marking stays";
+}
+
+TEST(SegmenterState, ForeignDamagedOrCutBytesAreRefusedAndChangeNothing) {
+  SceneInfo scene;
+  scene.gsd_m = 0.3;
+  scene.fps = 25.0;
+  Segmenter saved(SegmentationOptions{}, scene);
+  const MarkingScene first = marking_scene(6);
+  saved.process(first.frame, first.motion);
+  const std::vector<uint8_t> good = saved.save_state();
+  ASSERT_GT(good.size(), 100u) << "the windows' pixels are in the state";
+
+  std::vector<uint8_t> flipped = good;
+  flipped[flipped.size() / 2] ^= 0x40;
+  std::vector<uint8_t> foreign = good;
+  foreign[1] = 'X';
+  const std::vector<uint8_t> cut(good.begin(), good.end() - 5);
+  Segmenter target(SegmentationOptions{}, scene);
+  for (const auto& [bytes, why] : {std::pair{std::vector<uint8_t>{}, std::string("no 'USEGSTAT'")},
+                                   std::pair{foreign, std::string("no 'USEGSTAT'")},
+                                   std::pair{flipped, std::string("checksum")},
+                                   std::pair{cut, std::string("truncated")}}) {
+    SCOPED_TRACE(why);
+    try {
+      target.restore_state(bytes);
+      ADD_FAILURE() << "accepted";
+    } catch (const InputError& e) {
+      EXPECT_NE(std::string(e.what()).find(why), std::string::npos) << e.what();
+    }
+    EXPECT_EQ(target.last_frame_index(), -1);
+  }
+}
+
 TEST(ShiftCheck, OptionsAreValidated) {
   SegmentationOptions options;
   options.regions.shift_check_ratio = -1.0;

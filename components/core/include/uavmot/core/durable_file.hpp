@@ -1,6 +1,6 @@
 #pragma once
-// A file replaced atomically and durably: the saved states of the tracker and of motion
-// (components/tracking/node/tracker_state_io.hpp, components/motion/node/motion_state_file.hpp),
+// A file replaced atomically and durably: the saved states of the tracker, motion and segmentation
+// (components/tracking/node/tracker_state_io.hpp, uavmot/core/state_ring.hpp),
 // which a respawned component, or a new launch after the host lost power, restores.
 
 #include <cstdint>

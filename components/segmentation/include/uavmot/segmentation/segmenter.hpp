@@ -80,6 +80,16 @@ class Segmenter {
   const SceneInfo& scene() const { return scene_; }
   const SegmentationStats& last_stats() const { return stats_; }
 
+  // What the next frame depends on: the grey cluster windows of the frame segmented last (the shift
+  // check's previous frame). A new process that restore_state()s these bytes segments the next frame
+  // as this one would have; without them its shift check is skipped for that frame, which can keep a
+  // region of static texture that this one dropped. restore_state() throws InputError for bytes it
+  // refuses (another format, damaged).
+  std::vector<uint8_t> save_state() const;
+  void restore_state(const std::vector<uint8_t>& bytes);
+  // The frame segmented last, -1 before any.
+  int64_t last_frame_index() const { return previous_frame_; }
+
  private:
   std::vector<FeatureCluster> cluster(const MotionEstimate& motion, cv::Size image_size, ClusteringStats* stats) const;
   cv::Rect window_of(const FeatureCluster& cluster, cv::Size image_size) const;

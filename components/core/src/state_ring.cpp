@@ -1,18 +1,20 @@
-#include "motion_state_ring.hpp"
+#include "uavmot/core/state_ring.hpp"
 
 #include <fcntl.h>
 #include <unistd.h>
 
 #include <cctype>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <algorithm>
 
 #include <fmt/format.h>
 
-#include "motion_state_file.hpp"
 #include "uavmot/core/durable_file.hpp"
 #include "uavmot/core/error.hpp"
 
-namespace uavmot::motion {
+namespace uavmot {
 namespace fs = std::filesystem;
 namespace {
 
@@ -41,9 +43,19 @@ void sync_folder(const std::string& dir) {
 
 }  // namespace
 
-MotionStateRing::MotionStateRing(std::string dir, std::string stream, int keep)
-    : dir_(std::move(dir)), stream_(std::move(stream)), keep_(keep > 0 ? static_cast<size_t>(keep) : 0) {
-  if (keep < 1) throw InvalidArgument(fmt::format("motion states to keep per stream: {} (at least 1)", keep));
+std::optional<std::vector<uint8_t>> load_state_file(const std::string& path, const std::string& what) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(what + " file '" + path + "' cannot be opened");
+  std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (in.bad()) throw InputError(what + " file '" + path + "' cannot be read");
+  return bytes;
+}
+
+StateRing::StateRing(std::string dir, std::string kind, std::string stream, int keep)
+    : dir_(std::move(dir)), kind_(std::move(kind)), stream_(std::move(stream)), keep_(keep > 0 ? static_cast<size_t>(keep) : 0) {
+  if (keep < 1) throw InvalidArgument(fmt::format("{}s to keep per stream: {} (at least 1)", what(), keep));
   std::error_code ec;
   for (fs::directory_iterator it(dir_, ec), end; !ec && it != end; it.increment(ec)) {
     const std::string name = it->path().filename().string();
@@ -56,13 +68,19 @@ MotionStateRing::MotionStateRing(std::string dir, std::string stream, int keep)
   }
 }
 
-std::string MotionStateRing::prefix() const { return "motion_state_" + stream_ + "."; }
+std::string StateRing::prefix() const { return kind_ + "_" + stream_ + "."; }
 
-std::string MotionStateRing::path(int64_t frame) const { return fmt::format("{}/{}{:010d}.bin", dir_, prefix(), frame); }
+std::string StateRing::what() const {
+  std::string words = kind_;
+  std::replace(words.begin(), words.end(), '_', ' ');
+  return words;
+}
 
-std::string MotionStateRing::legacy_path() const { return dir_ + "/motion_state_" + stream_ + ".bin"; }
+std::string StateRing::path(int64_t frame) const { return fmt::format("{}/{}{:010d}.bin", dir_, prefix(), frame); }
 
-void MotionStateRing::save(int64_t frame, const std::vector<uint8_t>& bytes) {
+std::string StateRing::legacy_path() const { return dir_ + "/" + kind_ + "_" + stream_ + ".bin"; }
+
+void StateRing::save(int64_t frame, const std::vector<uint8_t>& bytes) {
   write_file_durably(path(frame), bytes);
   frames_.insert(frame);
   std::error_code ec;
@@ -81,14 +99,14 @@ void MotionStateRing::save(int64_t frame, const std::vector<uint8_t>& bytes) {
   }
 }
 
-std::optional<int64_t> MotionStateRing::adopt_legacy(const std::function<int64_t(const std::vector<uint8_t>&)>& frame_of) {
-  const auto bytes = load_state_file(legacy_path());
+std::optional<int64_t> StateRing::adopt_legacy(const std::function<int64_t(const std::vector<uint8_t>&)>& frame_of) {
+  const auto bytes = load_state_file(legacy_path(), what());
   if (!bytes) return std::nullopt;
   int64_t frame = 0;
   try {
     frame = frame_of(*bytes);
   } catch (const InputError& e) {
-    throw InputError("motion state file '" + legacy_path() + "': " + e.what() + " (remove it to start this stream afresh)");
+    throw InputError(what() + " file '" + legacy_path() + "': " + e.what() + " (remove it to start this stream afresh)");
   }
   // Written as the ring's without removing later states: they may be the ones a new launch needs.
   write_file_durably(path(frame), *bytes);
@@ -98,7 +116,7 @@ std::optional<int64_t> MotionStateRing::adopt_legacy(const std::function<int64_t
   return frame;
 }
 
-RestoreChoice restore_before(const MotionStateRing& ring, int64_t first_frame,
+RestoreChoice restore_before(const StateRing& ring, int64_t first_frame,
                              const std::function<int64_t(const std::vector<uint8_t>&)>& restore) {
   RestoreChoice choice;
   const auto& frames = ring.frames();
@@ -106,8 +124,8 @@ RestoreChoice restore_before(const MotionStateRing& ring, int64_t first_frame,
   for (auto it = std::make_reverse_iterator(frames.upper_bound(first_frame - 1)); it != frames.rend(); ++it) {
     const std::string file = ring.path(*it);
     try {
-      const auto bytes = load_state_file(file);
-      if (!bytes) throw InputError("removed while motion started");
+      const auto bytes = load_state_file(file, ring.what());
+      if (!bytes) throw InputError("removed while this process started");
       const int64_t held = restore(*bytes);
       if (held != *it) throw InputError(fmt::format("holds frame {}, not the frame its name says", held));
       choice.restored = *it;
@@ -119,10 +137,10 @@ RestoreChoice restore_before(const MotionStateRing& ring, int64_t first_frame,
   if (!choice.refused.empty()) {
     std::string all;
     for (const auto& r : choice.refused) all += (all.empty() ? "" : "; ") + r;
-    throw InputError("no usable motion state before frame " + std::to_string(first_frame) + ": " + all +
+    throw InputError("no usable " + ring.what() + " before frame " + std::to_string(first_frame) + ": " + all +
                      " (remove them to start this stream afresh)");
   }
   return choice;
 }
 
-}  // namespace uavmot::motion
+}  // namespace uavmot

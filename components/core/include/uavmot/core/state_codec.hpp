@@ -1,6 +1,6 @@
 #pragma once
-// Little-endian byte writer and bounds-checked reader for the estimator's saved state
-// (MotionEstimator::save_state). Plain C++, no DDS: the file format is the library's own.
+// Little-endian byte writer and bounds-checked reader for the chain stages' saved states
+// (MotionEstimator::save_state, Segmenter::save_state). Plain C++, no DDS: the formats are the libraries' own.
 
 #include <bit>
 #include <cstdint>
@@ -12,7 +12,7 @@
 
 #include "uavmot/core/error.hpp"
 
-namespace uavmot::motion::state_codec {
+namespace uavmot::state_codec {
 
 static_assert(sizeof(double) == 8 && sizeof(float) == 4, "IEEE 754 floats expected");
 static_assert(std::endian::native == std::endian::little, "the state format is little-endian, stored as in memory");
@@ -87,4 +87,4 @@ class Reader {
   std::string what_;
 };
 
-}  // namespace uavmot::motion::state_codec
+}  // namespace uavmot::state_codec

@@ -1,9 +1,10 @@
-// The ring of saved motion states: which state a new process restores (the newest before the first
+// The ring of a stage's saved states (here motion's): which state a new process restores (the newest before the first
 // frame it receives, passing over damaged ones), what a save removes, the legacy single file.
 // States here are stand-ins ("frame 7" as text) read by a stand-in restore, so the choice is tested
-// apart from the estimator (whose own save/restore is tested in components/motion/tests/saved_state_test.cpp).
+// apart from the estimator (whose own save/restore is tested in components/motion/tests/saved_state_test.cpp and
+// components/segmentation/tests/shift_check_test.cpp).
 
-#include "motion_state_ring.hpp"
+#include "uavmot/core/state_ring.hpp"
 
 #include <unistd.h>
 
@@ -18,7 +19,7 @@
 
 #include "uavmot/core/error.hpp"
 
-namespace uavmot::motion {
+namespace uavmot {
 namespace {
 namespace fs = std::filesystem;
 
@@ -42,10 +43,10 @@ struct FakeRestore {
   }
 };
 
-class MotionStateRingTest : public ::testing::Test {
+class StateRingTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = (fs::temp_directory_path() / ("motion_state_ring_" + std::to_string(::getpid()) + "_" +
+    dir_ = (fs::temp_directory_path() / ("state_ring_" + std::to_string(::getpid()) + "_" +
                                          ::testing::UnitTest::GetInstance()->current_test_info()->name()))
                .string();
     fs::remove_all(dir_);
@@ -54,22 +55,22 @@ class MotionStateRingTest : public ::testing::Test {
   void TearDown() override { fs::remove_all(dir_); }
 
   // The frames of uav1's state files on disk, oldest first.
-  std::set<int64_t> on_disk() const { return MotionStateRing(dir_, "uav1", 1000).frames(); }
+  std::set<int64_t> on_disk() const { return StateRing(dir_, "motion_state", "uav1", 1000).frames(); }
   void write(const std::string& name, const std::vector<uint8_t>& bytes) const {
     std::ofstream(dir_ + "/" + name, std::ios::binary).write(reinterpret_cast<const char*>(bytes.data()),
                                                              static_cast<std::streamsize>(bytes.size()));
   }
-  MotionStateRing ring_with(std::initializer_list<int64_t> frames, int keep = 32) const {
-    MotionStateRing ring(dir_, "uav1", keep);
+  StateRing ring_with(std::initializer_list<int64_t> frames, int keep = 32) const {
+    StateRing ring(dir_, "motion_state", "uav1", keep);
     for (int64_t f : frames) ring.save(f, state_of(f));
-    return MotionStateRing(dir_, "uav1", keep);  // as a new process lists them
+    return StateRing(dir_, "motion_state", "uav1", keep);  // as a new process lists them
   }
 
   std::string dir_;
 };
 
-TEST_F(MotionStateRingTest, SavesOneFilePerFrameAndKeepsTheNewestN) {
-  MotionStateRing ring(dir_, "uav1", 3);
+TEST_F(StateRingTest, SavesOneFilePerFrameAndKeepsTheNewestN) {
+  StateRing ring(dir_, "motion_state", "uav1", 3);
   for (int64_t f = 1; f <= 5; ++f) ring.save(f, state_of(f));
   EXPECT_EQ(ring.frames(), (std::set<int64_t>{3, 4, 5}));
   EXPECT_EQ(on_disk(), (std::set<int64_t>{3, 4, 5}));
@@ -78,28 +79,28 @@ TEST_F(MotionStateRingTest, SavesOneFilePerFrameAndKeepsTheNewestN) {
   EXPECT_FALSE(fs::exists(ring.path(2)));
 }
 
-TEST_F(MotionStateRingTest, ASaveRemovesTheStatesOfLaterFramesAnotherRunLeft) {
+TEST_F(StateRingTest, ASaveRemovesTheStatesOfLaterFramesAnotherRunLeft) {
   ring_with({10, 11, 12, 13});
-  MotionStateRing ring(dir_, "uav1", 32);
+  StateRing ring(dir_, "motion_state", "uav1", 32);
   ring.save(9, state_of(9));  // this run continues from an earlier frame: 10-13 are not its states
   EXPECT_EQ(ring.frames(), (std::set<int64_t>{9}));
   EXPECT_EQ(on_disk(), (std::set<int64_t>{9}));
 }
 
-TEST_F(MotionStateRingTest, OnlyThisStreamsStateFilesAreListedAndLeftoverTempFilesRemoved) {
+TEST_F(StateRingTest, OnlyThisStreamsStateFilesAreListedAndLeftoverTempFilesRemoved) {
   ring_with({4});
   write("motion_state_uav2.0000000007.bin", state_of(7));   // another stream
   write("motion_state_uav1.bin", state_of(3));              // the legacy single file: not a ring member
   write("motion_state_uav1.x0000008.bin", state_of(8));     // not a frame number
   write("motion_state_uav1.9.bin", state_of(9));            // not as the ring names frame 9
   write("motion_state_uav1.0000000005.bin.tmp", kDamaged);  // a write a crash cut short
-  MotionStateRing ring(dir_, "uav1", 32);
+  StateRing ring(dir_, "motion_state", "uav1", 32);
   EXPECT_EQ(ring.frames(), (std::set<int64_t>{4}));
   EXPECT_FALSE(fs::exists(dir_ + "/motion_state_uav1.0000000005.bin.tmp"));
   EXPECT_TRUE(fs::exists(dir_ + "/motion_state_uav2.0000000007.bin"));
 }
 
-TEST_F(MotionStateRingTest, RestoresTheStateOfTheFrameBeforeTheFirstFrameReceived) {
+TEST_F(StateRingTest, RestoresTheStateOfTheFrameBeforeTheFirstFrameReceived) {
   const auto ring = ring_with({5, 6, 7, 8, 9});
   FakeRestore restore;
   const auto choice = restore_before(ring, 8, std::ref(restore));
@@ -110,7 +111,7 @@ TEST_F(MotionStateRingTest, RestoresTheStateOfTheFrameBeforeTheFirstFrameReceive
   EXPECT_TRUE(choice.refused.empty());
 }
 
-TEST_F(MotionStateRingTest, WithoutThatFrameTheNewestOlderOneIsRestored) {
+TEST_F(StateRingTest, WithoutThatFrameTheNewestOlderOneIsRestored) {
   const auto ring = ring_with({3, 5, 9});
   FakeRestore restore;
   const auto choice = restore_before(ring, 8, std::ref(restore));
@@ -119,7 +120,7 @@ TEST_F(MotionStateRingTest, WithoutThatFrameTheNewestOlderOneIsRestored) {
   EXPECT_EQ(choice.newer, (std::vector<int64_t>{9}));
 }
 
-TEST_F(MotionStateRingTest, OnlyLaterStatesMeansStartingAfreshNotSkippingFrames) {
+TEST_F(StateRingTest, OnlyLaterStatesMeansStartingAfreshNotSkippingFrames) {
   const auto ring = ring_with({10, 11});
   FakeRestore restore;
   const auto choice = restore_before(ring, 5, std::ref(restore));
@@ -128,8 +129,8 @@ TEST_F(MotionStateRingTest, OnlyLaterStatesMeansStartingAfreshNotSkippingFrames)
   EXPECT_EQ(choice.newer, (std::vector<int64_t>{10, 11}));
 }
 
-TEST_F(MotionStateRingTest, NoStatesMeansStartingAfresh) {
-  const MotionStateRing ring(dir_ + "/not_there", "uav1", 32);
+TEST_F(StateRingTest, NoStatesMeansStartingAfresh) {
+  const StateRing ring(dir_ + "/not_there", "motion_state", "uav1", 32);
   FakeRestore restore;
   const auto choice = restore_before(ring, 1, std::ref(restore));
   EXPECT_FALSE(choice.restored);
@@ -137,7 +138,7 @@ TEST_F(MotionStateRingTest, NoStatesMeansStartingAfresh) {
   EXPECT_TRUE(restore.tried.empty());
 }
 
-TEST_F(MotionStateRingTest, ADamagedNewestStateFallsBackToAnOlderValidOne) {
+TEST_F(StateRingTest, ADamagedNewestStateFallsBackToAnOlderValidOne) {
   auto ring = ring_with({5, 6, 7});
   write("motion_state_uav1.0000000007.bin", kDamaged);
   FakeRestore restore;
@@ -150,7 +151,7 @@ TEST_F(MotionStateRingTest, ADamagedNewestStateFallsBackToAnOlderValidOne) {
   EXPECT_NE(choice.refused[0].find("checksum mismatch"), std::string::npos) << choice.refused[0];
 }
 
-TEST_F(MotionStateRingTest, AStateThatHoldsAnotherFrameThanItsNameIsRefused) {
+TEST_F(StateRingTest, AStateThatHoldsAnotherFrameThanItsNameIsRefused) {
   auto ring = ring_with({5, 6});
   write("motion_state_uav1.0000000006.bin", state_of(4));  // e.g. copied under the wrong name
   FakeRestore restore;
@@ -161,7 +162,7 @@ TEST_F(MotionStateRingTest, AStateThatHoldsAnotherFrameThanItsNameIsRefused) {
   EXPECT_NE(choice.refused[0].find("holds frame 4"), std::string::npos) << choice.refused[0];
 }
 
-TEST_F(MotionStateRingTest, EveryUsableStateDamagedIsAnErrorNamingTheFiles) {
+TEST_F(StateRingTest, EveryUsableStateDamagedIsAnErrorNamingTheFiles) {
   auto ring = ring_with({5, 6, 9});
   write("motion_state_uav1.0000000005.bin", kDamaged);
   write("motion_state_uav1.0000000006.bin", kDamaged);
@@ -178,10 +179,10 @@ TEST_F(MotionStateRingTest, EveryUsableStateDamagedIsAnErrorNamingTheFiles) {
   EXPECT_EQ(restore.tried, (std::vector<int64_t>{-1, -1})) << "the later state (9) must not be tried";
 }
 
-TEST_F(MotionStateRingTest, TheLegacySingleFileBecomesTheRingsStateOfItsFrame) {
+TEST_F(StateRingTest, TheLegacySingleFileBecomesTheRingsStateOfItsFrame) {
   ring_with({20});  // a later state stays: a new launch may need it
   write("motion_state_uav1.bin", state_of(12));
-  MotionStateRing ring(dir_, "uav1", 32);
+  StateRing ring(dir_, "motion_state", "uav1", 32);
   FakeRestore frame_of;
   const auto adopted = ring.adopt_legacy(std::ref(frame_of));
   ASSERT_TRUE(adopted);
@@ -192,9 +193,9 @@ TEST_F(MotionStateRingTest, TheLegacySingleFileBecomesTheRingsStateOfItsFrame) {
   EXPECT_FALSE(ring.adopt_legacy(std::ref(frame_of))) << "no legacy file any more";
 }
 
-TEST_F(MotionStateRingTest, ADamagedLegacyFileIsRefusedAndKept) {
+TEST_F(StateRingTest, ADamagedLegacyFileIsRefusedAndKept) {
   write("motion_state_uav1.bin", kDamaged);
-  MotionStateRing ring(dir_, "uav1", 32);
+  StateRing ring(dir_, "motion_state", "uav1", 32);
   FakeRestore frame_of;
   try {
     ring.adopt_legacy(std::ref(frame_of));
@@ -208,10 +209,10 @@ TEST_F(MotionStateRingTest, ADamagedLegacyFileIsRefusedAndKept) {
   EXPECT_TRUE(ring.frames().empty());
 }
 
-TEST_F(MotionStateRingTest, KeepingFewerThanOneStateIsRefused) {
-  EXPECT_THROW(MotionStateRing(dir_, "uav1", 0), InvalidArgument);
-  EXPECT_THROW(MotionStateRing(dir_, "uav1", -3), InvalidArgument);
+TEST_F(StateRingTest, KeepingFewerThanOneStateIsRefused) {
+  EXPECT_THROW(StateRing(dir_, "motion_state", "uav1", 0), InvalidArgument);
+  EXPECT_THROW(StateRing(dir_, "motion_state", "uav1", -3), InvalidArgument);
 }
 
 }  // namespace
-}  // namespace uavmot::motion
+}  // namespace uavmot

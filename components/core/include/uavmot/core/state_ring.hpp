@@ -1,9 +1,10 @@
 #pragma once
-// A stream's last N saved motion estimator states, one file per frame:
-// DIR/motion_state_<stream>.<frame, 10 digits>.bin. Several, not one, because after a stop mid-stream
-// motion's newest state can be ahead of the tracker's (frames motion published that the tracker never
-// got): a new launch that starts after the tracker's frame K needs motion's state at K, which only a
-// ring that kept it still has (docs/launch.md, "Continuing the tracks in a new launch").
+// A stream's last N saved states of one chain stage, one file per frame:
+// DIR/<kind>_<stream>.<frame, 10 digits>.bin (kind: "motion_state", "segmentation_state").
+// Several, not one, because after a stop mid-stream a stage's newest state can be ahead of the
+// tracker's (frames it published that the tracker never got): a new launch that starts after the
+// tracker's frame K needs the stage's state at K, which only a ring that kept it still has
+// (docs/launch.md, "Continuing the tracks in a new launch").
 
 #include <cstdint>
 #include <functional>
@@ -12,21 +13,28 @@
 #include <string>
 #include <vector>
 
-namespace uavmot::motion {
+namespace uavmot {
 
 constexpr int kDefaultStatesKept = 32;
 
-class MotionStateRing {
+// nullopt when the file does not exist; throws InputError ("<what> file '<path>' ...") when it
+// exists but cannot be read.
+std::optional<std::vector<uint8_t>> load_state_file(const std::string& path, const std::string& what);
+
+class StateRing {
  public:
-  // Lists the states of STREAM already in DIR (a folder that does not exist holds none).
+  // Lists the states of STREAM already in DIR (a folder that does not exist holds none). KIND is the
+  // file names' stem ("motion_state"); messages call the states "<kind with spaces>s".
   // Throws InvalidArgument when KEEP < 1.
-  MotionStateRing(std::string dir, std::string stream, int keep);
+  StateRing(std::string dir, std::string kind, std::string stream, int keep);
 
   // Frames whose states are kept, oldest first.
   const std::set<int64_t>& frames() const { return frames_; }
   std::string path(int64_t frame) const;
-  // The single state file of earlier versions (motion_state_<stream>.bin).
+  // The single state file of earlier versions (<kind>_<stream>.bin).
   std::string legacy_path() const;
+  // "motion state": what the states are called in messages.
+  std::string what() const;
 
   // Writes FRAME's state durably (uavmot::write_file_durably), then removes the states of later
   // frames (a run this one no longer continues; removed durably, so a power loss cannot bring them
@@ -39,9 +47,10 @@ class MotionStateRing {
   std::optional<int64_t> adopt_legacy(const std::function<int64_t(const std::vector<uint8_t>&)>& frame_of);
 
  private:
-  std::string prefix() const;  // motion_state_<stream>.
+  std::string prefix() const;  // <kind>_<stream>.
 
   std::string dir_;
+  std::string kind_;
   std::string stream_;
   size_t keep_;
   std::set<int64_t> frames_;
@@ -59,7 +68,7 @@ struct RestoreChoice {
 // otherwise returns the frame the state holds; a state that holds another frame than its file's name
 // says is refused too. Refused states are passed over for the next older one. Throws InputError,
 // naming every file, when there were states before FIRST_FRAME and all were refused.
-RestoreChoice restore_before(const MotionStateRing& ring, int64_t first_frame,
+RestoreChoice restore_before(const StateRing& ring, int64_t first_frame,
                              const std::function<int64_t(const std::vector<uint8_t>&)>& restore);
 
-}  // namespace uavmot::motion
+}  // namespace uavmot
