@@ -1,6 +1,7 @@
 #include "tracker_state_io.hpp"
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -13,6 +14,11 @@
 
 namespace uavmot::tracking {
 namespace {
+
+// Version 2 added TrackRecordState.origin; version 1 files (no mark) are refused, not misread.
+constexpr char kFileMagic[8] = {'U', 'T', 'R', 'K', 'S', 'T', 'A', 'T'};
+constexpr uint32_t kFileVersion = 2;
+constexpr size_t kFileHeaderBytes = sizeof kFileMagic + sizeof(uint32_t);
 
 msg::TrackRecordState record_to_msg(const TrackRecord& r) {
   msg::TrackRecordState m;
@@ -32,6 +38,7 @@ msg::TrackRecordState record_to_msg(const TrackRecord& r) {
   box.length(r.anchor_box.length);
   box.angle_deg(r.anchor_box.angle_deg);
   m.anchor_box(box);
+  m.origin({r.origin.x, r.origin.y});
   for (const auto& f : r.features) {
     msg::FeatureLinkState fm;
     fm.feature_id(f.feature_id);
@@ -61,6 +68,11 @@ std::optional<TrackRecord> record_from_msg(const msg::TrackRecordState& m, std::
   r.frames_dormant = m.frames_dormant();
   const auto& b = m.anchor_box();
   r.anchor_box = {b.cx(), b.cy(), b.width(), b.length(), b.angle_deg()};
+  if (!std::isfinite(m.origin()[0]) || !std::isfinite(m.origin()[1])) {
+    why = "track " + std::to_string(m.id()) + " has a non-finite origin";
+    return std::nullopt;
+  }
+  r.origin = {m.origin()[0], m.origin()[1]};
   for (const auto& fm : m.features()) {
     if (!std::isfinite(fm.u()) || !std::isfinite(fm.v())) {
       why = "track " + std::to_string(m.id()) + " has a non-finite feature link";
@@ -112,6 +124,10 @@ void save_snapshot(const msg::TrackerSnapshot& snapshot, const std::string& path
   } catch (const InputError& e) {
     throw OutputError("cannot encode the tracker state for '" + path + "': " + e.what());
   }
+  uint8_t header[kFileHeaderBytes];
+  std::memcpy(header, kFileMagic, sizeof kFileMagic);
+  std::memcpy(header + sizeof kFileMagic, &kFileVersion, sizeof kFileVersion);  // little-endian hosts only
+  bytes.insert(bytes.begin(), header, header + kFileHeaderBytes);
   write_file_durably(path, bytes);
 }
 
@@ -119,9 +135,20 @@ std::optional<msg::TrackerSnapshot> load_snapshot(const std::string& path) {
   if (!std::filesystem::exists(path)) return std::nullopt;
   std::ifstream in(path, std::ios::binary);
   const std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (bytes.size() < kFileHeaderBytes || std::memcmp(bytes.data(), kFileMagic, sizeof kFileMagic) != 0) {
+    throw InputError("tracker state file '" + path + "' has no 'UTRKSTAT' mark: it is damaged or from a uavmot "
+                     "before format version 2 (remove it to start this stream afresh)");
+  }
+  uint32_t version = 0;
+  std::memcpy(&version, bytes.data() + sizeof kFileMagic, sizeof version);
+  if (version != kFileVersion) {
+    throw InputError("tracker state file '" + path + "' is of format version " + std::to_string(version) +
+                     "; this build reads version " + std::to_string(kFileVersion) + " (remove it to start this stream afresh)");
+  }
   msg::TrackerSnapshotPubSubType type;
   msg::TrackerSnapshot snapshot;
-  dds::from_cdr(type, bytes.data(), bytes.size(), snapshot, "tracker state file '" + path + "' is corrupt");
+  dds::from_cdr(type, bytes.data() + kFileHeaderBytes, bytes.size() - kFileHeaderBytes, snapshot,
+                "tracker state file '" + path + "' is corrupt");
   return snapshot;
 }
 

@@ -16,10 +16,12 @@ msg::TrackerSnapshot to_msg(const TrackerState& state, const std::string& stream
 // nullopt (with `why`) for a snapshot that is malformed; Tracker::restore checks consistency.
 std::optional<TrackerState> from_msg(const msg::TrackerSnapshot& snapshot, std::string& why);
 
-// Writes the snapshot to `path` atomically and durably (uavmot::write_file_durably). Throws
-// OutputError naming the file and the reason.
+// Writes the snapshot to `path` atomically and durably (uavmot::write_file_durably): "UTRKSTAT",
+// a u32 format version (little-endian), then the snapshot's CDR. Throws OutputError naming the
+// file and the reason.
 void save_snapshot(const msg::TrackerSnapshot& snapshot, const std::string& path);
-// nullopt when the file does not exist; throws InputError when it exists but cannot be decoded.
+// nullopt when the file does not exist; throws InputError when it exists but cannot be decoded, or
+// is of another format version (an earlier uavmot's file had no mark: its CDR would be misread).
 std::optional<msg::TrackerSnapshot> load_snapshot(const std::string& path);
 
 }  // namespace uavmot::tracking

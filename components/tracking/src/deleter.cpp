@@ -77,6 +77,7 @@ Fate decide_fate(const TrackRecord& track, bool in_view, const TrackerOptions& o
 void age_dormant(TrackerState& state, const Homography& h, const TrackerOptions& options) {
   for (auto& track : state.dormant) {
     track.anchor_box = transform_box(h, track.anchor_box);
+    track.origin = apply_homography(h, track.origin);
     ++track.frames_dormant;
   }
   std::erase_if(state.dormant, [&](const TrackRecord& t) {

@@ -47,12 +47,13 @@ std::vector<OrientedBox> select_regions(const SegmentationResult& segmentation, 
 }
 
 // This frame's valid features: the moving ones, and the stopped (no longer moving) ones that a track
-// links to (a link made while they moved).
+// which has travelled MIN_TRAVEL_PX links to (a link made while they moved).
 FeatureIndex select_features(const MotionEstimate& motion, const std::vector<TrackRecord>& tracks,
-                             const TrackerOptions& options, uint64_t& rejected) {
+                             const TrackerOptions& options, double min_travel_px, uint64_t& rejected) {
   std::vector<uint64_t> linked;
   if (options.stopped_link_min_frames > 0) {
     for (const auto& t : tracks) {
+      if (std::hypot(t.anchor_box.cx - t.origin.x, t.anchor_box.cy - t.origin.y) < min_travel_px) continue;
       for (const auto& link : t.features) linked.push_back(link.feature_id);
     }
     std::sort(linked.begin(), linked.end());
@@ -84,14 +85,15 @@ cv::Size image_size(const MotionEstimate& motion, const TrackerOptions& options)
 }  // namespace
 
 FrameInput read_frame_input(const MotionEstimate& motion, const SegmentationResult& segmentation,
-                            const TrackerOptions& options, TrackerState& state) {
+                            const TrackerOptions& options, const SceneInfo& scene, TrackerState& state) {
   Homography h = motion.homography;
   if (!usable_homography(h)) {
     ++state.rejected_homographies;
     h = identity_homography();
   }
   std::vector<OrientedBox> regions = select_regions(segmentation, options, state.rejected_regions);
-  FeatureIndex features = select_features(motion, state.tracks, options, state.rejected_features);
+  const double min_travel_px = options.stopped_link_min_travel_lengths * scene.vehicle_length_m / scene.gsd_m;
+  FeatureIndex features = select_features(motion, state.tracks, options, min_travel_px, state.rejected_features);
   return FrameInput{h, std::move(regions), std::move(features), image_size(motion, options)};
 }
 

@@ -21,8 +21,9 @@ struct FrameInput {
 };
 
 // Reads and validates one frame. Counts what it rejects in `state` (rejected_*); the stopped
-// features kept are those that state.tracks link to.
+// features kept are those that the tracks of state.tracks which have travelled
+// stopped_link_min_travel_lengths vehicle lengths (of `scene`) link to.
 FrameInput read_frame_input(const MotionEstimate& motion, const SegmentationResult& segmentation,
-                            const TrackerOptions& options, TrackerState& state);
+                            const TrackerOptions& options, const SceneInfo& scene, TrackerState& state);
 
 }  // namespace uavmot::tracking

@@ -125,6 +125,7 @@ void initiate_tracks(const std::vector<int>& free_regions, const FrameInput& inp
       track.age = 0;
       track.hits = 0;
       track.hit_history = 0;
+      track.origin = {region.cx, region.cy};
     }
     ++track.age;
     ++track.hits;

@@ -34,7 +34,7 @@ Track to_output(const TrackRecord& record) {
 
 bool by_id(const TrackRecord& a, const TrackRecord& b) { return a.id < b.id; }
 
-// Every live track predicted into this frame; its anchor is carried through the homography too.
+// Every live track predicted into this frame; its anchor and origin are carried through the homography too.
 std::vector<TrackInFrame> predict_tracks(std::vector<TrackRecord> records, const Homography& h, const MotionModel& model) {
   std::vector<TrackInFrame> tracks;
   tracks.reserve(records.size());
@@ -42,6 +42,7 @@ std::vector<TrackInFrame> predict_tracks(std::vector<TrackRecord> records, const
     const KalmanState prior = model.predict(to_kalman(r), h);
     if (!is_finite(prior)) continue;  // cannot happen with validated input; drop rather than spread NaN
     r.anchor_box = transform_box(h, r.anchor_box);
+    r.origin = apply_homography(h, r.origin);
     tracks.push_back(predicted_track(std::move(r), prior));
   }
   return tracks;
@@ -58,7 +59,7 @@ Tracker::Tracker(TrackerOptions options, SceneInfo scene) : options_(std::move(o
 TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResult& segmentation) {
   const TrackerStages& stage = *stages_;
   ++state_.frames_processed;
-  const FrameInput in = read_frame_input(motion, segmentation, options_, state_);
+  const FrameInput in = read_frame_input(motion, segmentation, options_, scene_, state_);
 
   // 1. Predict every track with the camera motion as control input.
   std::vector<TrackInFrame> tracks = predict_tracks(std::move(state_.tracks), in.homography, *stage.motion_model);
@@ -109,7 +110,7 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
 void Tracker::restore(const TrackerState& state) {
   auto check = [](const TrackRecord& t) {
     const KalmanState k = to_kalman(t);
-    if (!is_finite(k) || t.id == 0) throw InvalidArgument("tracker state: track " + std::to_string(t.id) + " is not valid");
+    if (!is_finite(k) || t.id == 0 || !std::isfinite(t.origin.x) || !std::isfinite(t.origin.y)) throw InvalidArgument("tracker state: track " + std::to_string(t.id) + " is not valid");
   };
   // Counters the next frame increments: one at its limit (a corrupt or hostile sample) cannot go
   // on; frames_processed would overflow (found by fuzzing) and next_id would hand out id 0.

@@ -35,6 +35,9 @@ struct TrackRecord {
   uint32_t frames_since_update = 0;  // frames without region or feature support
   uint32_t frames_dormant = 0;       // frames spent hidden, waiting to be re-acquired
   OrientedBox anchor_box;            // last measured box (region or features), carried by the homographies
+  // The centre of the track's first region, carried by the homographies like anchor_box: how far the
+  // object has gone since (a parked car that moved for a moment has not gone a car length).
+  cv::Point2d origin;
   std::vector<FeatureLink> features;
 };
 
