@@ -405,7 +405,7 @@ void MotionEstimator::Impl::detect_new_features(const cv::Mat& gray, const Pyram
 
 // ---- Saved state (save_state / restore_state) --------------------------------------------------
 //
-// File layout, little-endian:
+// File layout, little-endian: state_codec::seal's envelope around the payload:
 //   magic "UMOTSTAT" (8 bytes) | u32 version | u64 payload bytes | u64 FNV-1a 64 of the payload | payload
 // Payload (version 1):
 //   u64 options fingerprint | i64 last frame index | u64 next id | bool last valid | 9 x f64 last homography
@@ -418,7 +418,6 @@ namespace {
 
 constexpr char kStateMagic[8] = {'U', 'M', 'O', 'T', 'S', 'T', 'A', 'T'};
 constexpr uint32_t kStateVersion = 1;
-constexpr size_t kStateHeaderBytes = 8 + 4 + 8 + 8;
 constexpr int kMaxStateImageSide = 1 << 15;
 
 void put_string(state_codec::Writer& w, const std::string& s) {
@@ -492,38 +491,11 @@ std::vector<uint8_t> MotionEstimator::Impl::save_state() const {
     w.put(f.classifier.moving());
     w.put(static_cast<int32_t>(f.classifier.streak()));
   }
-  const std::vector<uint8_t>& payload = w.bytes();
-  state_codec::Writer out;
-  out.reserve(kStateHeaderBytes + payload.size());
-  out.put_bytes(kStateMagic, sizeof kStateMagic);
-  out.put(kStateVersion);
-  out.put(static_cast<uint64_t>(payload.size()));
-  out.put(fnv1a64(payload.data(), payload.size()));
-  out.put_bytes(payload.data(), payload.size());
-  return std::move(out.bytes());
+  return state_codec::seal(kStateMagic, kStateVersion, w.bytes());
 }
 
 void MotionEstimator::Impl::restore_state(const std::vector<uint8_t>& bytes) {
-  const std::string what = "motion estimator state";
-  state_codec::Reader header(bytes.data(), bytes.size(), what);
-  if (bytes.size() < sizeof kStateMagic || std::memcmp(bytes.data(), kStateMagic, sizeof kStateMagic) != 0) {
-    header.fail("not a motion state (no 'UMOTSTAT' at the start)");
-  }
-  header.get_bytes(sizeof kStateMagic);
-  const auto version = header.get<uint32_t>();
-  if (version != kStateVersion) {
-    header.fail("format version " + std::to_string(version) + ", this build reads version " + std::to_string(kStateVersion));
-  }
-  const auto payload_size = header.get<uint64_t>();
-  const auto checksum = header.get<uint64_t>();
-  if (payload_size != header.remaining()) {
-    header.fail("truncated or padded: " + std::to_string(header.remaining()) + " payload bytes, the header says " +
-                std::to_string(payload_size));
-  }
-  const uint8_t* payload = bytes.data() + kStateHeaderBytes;
-  if (fnv1a64(payload, payload_size) != checksum) header.fail("corrupt (checksum mismatch)");
-
-  state_codec::Reader r(payload, payload_size, what);
+  state_codec::Reader r = state_codec::unseal(bytes, kStateMagic, kStateVersion, "motion estimator state", "motion state");
   if (r.get<uint64_t>() != options_fingerprint(options_)) {
     r.fail("saved with other motion options or scene (gsd, fps) than this estimator's");
   }

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "uavmot/core/checksum.hpp"
 #include "uavmot/core/error.hpp"
 
 namespace uavmot::state_codec {
@@ -86,5 +87,44 @@ class Reader {
   size_t pos_ = 0;
   std::string what_;
 };
+
+// A saved state's envelope, shared by the stages' formats:
+//   magic (8 bytes) | u32 version | u64 payload bytes | u64 FNV-1a 64 of the payload | payload
+inline constexpr size_t kEnvelopeBytes = 8 + 4 + 8 + 8;
+
+inline std::vector<uint8_t> seal(const char (&magic)[8], uint32_t version, const std::vector<uint8_t>& payload) {
+  Writer out;
+  out.reserve(kEnvelopeBytes + payload.size());
+  out.put_bytes(magic, sizeof magic);
+  out.put(version);
+  out.put(static_cast<uint64_t>(payload.size()));
+  out.put(fnv1a64(payload.data(), payload.size()));
+  out.put_bytes(payload.data(), payload.size());
+  return std::move(out.bytes());
+}
+
+// A reader of the payload of sealed BYTES. Throws InputError ("<what>: ...") for other magic
+// ("not a <noun>"), another version, a size that disagrees with the header or a checksum mismatch.
+inline Reader unseal(const std::vector<uint8_t>& bytes, const char (&magic)[8], uint32_t version, const std::string& what,
+                     const std::string& noun) {
+  Reader header(bytes.data(), bytes.size(), what);
+  if (bytes.size() < sizeof magic || std::memcmp(bytes.data(), magic, sizeof magic) != 0) {
+    header.fail("not a " + noun + " (no '" + std::string(magic, sizeof magic) + "' at the start)");
+  }
+  header.get_bytes(sizeof magic);
+  const auto found = header.get<uint32_t>();
+  if (found != version) {
+    header.fail("format version " + std::to_string(found) + ", this build reads version " + std::to_string(version));
+  }
+  const auto payload_size = header.get<uint64_t>();
+  const auto checksum = header.get<uint64_t>();
+  if (payload_size != header.remaining()) {
+    header.fail("truncated or padded: " + std::to_string(header.remaining()) + " payload bytes, the header says " +
+                std::to_string(payload_size));
+  }
+  const uint8_t* payload = bytes.data() + kEnvelopeBytes;
+  if (fnv1a64(payload, payload_size) != checksum) header.fail("corrupt (checksum mismatch)");
+  return Reader(payload, payload_size, what);
+}
 
 }  // namespace uavmot::state_codec
