@@ -9,7 +9,7 @@ cd "$(dirname "$0")/.."
 seconds=${1:-30}
 dir=${UAVMOT_FUZZ_BUILD_DIR:-build-fuzz}
 export CCACHE_BASEDIR=${CCACHE_BASEDIR:-$(cd .. && pwd)}
-targets=(mcap_reader sample_validators config eval_files recording motion_state)
+targets=(mcap_reader sample_validators config eval_files recording motion_state segmentation_state)
 cmake -S . -B "$dir" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
   -DUAVMOT_FUZZ=ON -DUAVMOT_BUILD_TESTS=OFF -DUAVMOT_BUILD_BENCHMARKS=OFF >/dev/null
 echo "fuzz: building ${targets[*]/%/_fuzz} in $dir (log: $dir/build.log)"

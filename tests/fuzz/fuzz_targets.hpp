@@ -15,5 +15,6 @@ int config(const uint8_t* data, size_t size);             // YAML text -> Config
 int eval_files(const uint8_t* data, size_t size);         // first byte picks the file kind, rest is its text
 int recording(const uint8_t* data, size_t size);          // MCAP bytes -> eval --recording, recover, again
 int motion_state(const uint8_t* data, size_t size);       // bytes -> MotionEstimator::restore_state, two frames
+int segmentation_state(const uint8_t* data, size_t size); // bytes -> Segmenter::restore_state, two frames
 
 }  // namespace uavmot::fuzz

@@ -60,7 +60,8 @@ TEST_P(FuzzReplay, SeedsAndPastCrashesRunClean) {
 INSTANTIATE_TEST_SUITE_P(Targets, FuzzReplay,
                          ::testing::Values(Case{"mcap_reader", &mcap_reader}, Case{"sample_validators", &sample_validators},
                                            Case{"config", &config}, Case{"eval_files", &eval_files},
-                                           Case{"recording", &recording}, Case{"motion_state", &motion_state}),
+                                           Case{"recording", &recording}, Case{"motion_state", &motion_state},
+                                           Case{"segmentation_state", &segmentation_state}),
                          [](const ::testing::TestParamInfo<Case>& param) { return std::string(param.param.name); });
 
 // The recording seeds must reach the whole path, not stop at the first check: the intact one scores
