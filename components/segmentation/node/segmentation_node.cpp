@@ -3,6 +3,7 @@
 // frame, the last --state-keep kept (uavmot/core/state_ring.hpp); a new launch that starts after
 // frame K restores the state of K and segments K+1 as an uninterrupted run did.
 
+#include <chrono>
 #include <filesystem>
 #include <map>
 #include <optional>
@@ -29,6 +30,7 @@ struct StreamSegmentation {
   std::optional<StateRing> states{};  // with --state-dir
   int64_t saved_frame = 0;
   uint64_t saves = 0;
+  double save_ms = 0.0;  // total time of save_state() and the ring's save (synced write, removals)
 };
 
 // Restores the newest kept state before FIRST_FRAME, the first frame this process received of the
@@ -100,20 +102,24 @@ int segmentation_main(int argc, char** argv) {
                   [&](const std::string& stream, int64_t index) {
                     StreamSegmentation& s = streams_seen.at(stream);
                     if (!s.states) return;
+                    const auto t0 = std::chrono::steady_clock::now();
                     try {
                       s.states->save(index, s.segmenter.save_state());
                     } catch (const OutputError& e) {
                       spdlog::warn("cannot write segmentation state: {}", e.what());
                       return;
                     }
+                    s.save_ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
                     ++s.saves;
                     s.saved_frame = index;
                   });
       const int code = paired.run();
       for (const auto& [stream, s] : streams_seen) {
         if (s.saves > 0) {
-          spdlog::info("stream '{}': segmentation state saved at frame {} in '{}' ({} saves, {} kept)", stream,
-                       s.saved_frame, s.states->path(s.saved_frame), s.saves, s.states->frames().size());
+          spdlog::info("stream '{}': segmentation state saved at frame {} in '{}' ({} saves, on average {:.2f} ms to "
+                       "serialise, write, sync and remove the oldest; {} kept)",
+                       stream, s.saved_frame, s.states->path(s.saved_frame), s.saves, s.save_ms / static_cast<double>(s.saves),
+                       s.states->frames().size());
         }
       }
       return code;
