@@ -3,13 +3,14 @@
 #include <fcntl.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cctype>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
-#include <algorithm>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "uavmot/core/durable_file.hpp"
 #include "uavmot/core/error.hpp"
@@ -30,6 +31,11 @@ std::optional<int64_t> frame_in_name(const std::string& name, const std::string&
     if (!std::isdigit(static_cast<unsigned char>(c))) return std::nullopt;
   }
   return std::stoll(digits);
+}
+
+std::string frame_range(const std::vector<int64_t>& frames) {
+  return frames.size() == 1 ? std::to_string(frames.front())
+                            : std::to_string(frames.front()) + "-" + std::to_string(frames.back());
 }
 
 // Makes removals in DIR durable (a folder that cannot be synced leaves it to the system, as
@@ -141,6 +147,36 @@ RestoreChoice restore_before(const StateRing& ring, int64_t first_frame,
                      " (remove them to start this stream afresh)");
   }
   return choice;
+}
+
+std::optional<int64_t> restore_and_report(const StateRing& ring, const std::string& stream, int64_t first_frame,
+                                          const std::function<int64_t(const std::vector<uint8_t>&)>& restore) {
+  size_t bytes_restored = 0;
+  const auto choice = restore_before(ring, first_frame, [&](const std::vector<uint8_t>& bytes) {
+    const int64_t frame = restore(bytes);
+    bytes_restored = bytes.size();
+    return frame;
+  });
+  const std::string what = ring.what();
+  for (const auto& refused : choice.refused) {
+    spdlog::warn("stream '{}': passed over a damaged {} for an older one: {}", stream, what, refused);
+  }
+  if (choice.restored) {
+    spdlog::info("stream '{}': restored the {} at frame {} ({} bytes): the newest kept before the first frame "
+                 "received ({})",
+                 stream, what, *choice.restored, bytes_restored, first_frame);
+    if (!choice.newer.empty()) {
+      spdlog::info("stream '{}': the kept states of frames {} are not used (after frame {}); they are replaced as "
+                   "this run saves",
+                   stream, frame_range(choice.newer), first_frame - 1);
+    }
+  } else if (!choice.newer.empty()) {
+    spdlog::warn("stream '{}': the first frame received is {}, but every kept {} is of a later frame ({}): starting "
+                 "this stream afresh (continuing from one would skip the frames up to it); they are replaced as "
+                 "this run saves",
+                 stream, first_frame, what, frame_range(choice.newer));
+  }
+  return choice.restored;
 }
 
 }  // namespace uavmot

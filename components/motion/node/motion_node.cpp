@@ -46,11 +46,6 @@ struct StreamMotion {
   size_t state_bytes = 0;      // of the last save
 };
 
-std::string frame_range(const std::vector<int64_t>& frames) {
-  return frames.size() == 1 ? std::to_string(frames.front())
-                            : std::to_string(frames.front()) + "-" + std::to_string(frames.back());
-}
-
 // Restores the newest kept state before FIRST_FRAME, the first frame this process received of the
 // stream: its state at FIRST_FRAME - 1 continues exactly, also when later states were saved (a stop
 // left motion ahead of the tracker, and the new launch starts after the tracker's frame). Later
@@ -66,30 +61,11 @@ void restore_kept_state(StreamMotion& s, const std::string& stream, int64_t firs
     spdlog::info("stream '{}': the single motion state file of an earlier version (frame {}) is now '{}'", stream,
                  *adopted, s.states->path(*adopted));
   }
-  size_t bytes_restored = 0;
-  const auto choice = restore_before(*s.states, first_frame, [&](const std::vector<uint8_t>& bytes) {
-    s.estimator.restore_state(bytes);
-    bytes_restored = bytes.size();
-    return s.estimator.last_frame_index();
-  });
-  for (const auto& refused : choice.refused) {
-    spdlog::warn("stream '{}': passed over a damaged motion state for an older one: {}", stream, refused);
-  }
-  if (choice.restored) {
-    s.restored_frame = *choice.restored;
-    spdlog::info("stream '{}': restored the motion state at frame {} ({} bytes): the newest kept before the first "
-                 "frame received ({})",
-                 stream, s.restored_frame, bytes_restored, first_frame);
-    if (!choice.newer.empty()) {
-      spdlog::info("stream '{}': the kept states of frames {} are not used (after frame {}); they are replaced as "
-                   "this run saves",
-                   stream, frame_range(choice.newer), first_frame - 1);
-    }
-  } else if (!choice.newer.empty()) {
-    spdlog::warn("stream '{}': the first frame received is {}, but every kept motion state is of a later frame ({}): "
-                 "starting this stream afresh (continuing from one would leave the frames up to it without an "
-                 "estimate); they are replaced as this run saves",
-                 stream, first_frame, frame_range(choice.newer));
+  if (const auto restored = restore_and_report(*s.states, stream, first_frame, [&](const std::vector<uint8_t>& bytes) {
+        s.estimator.restore_state(bytes);
+        return s.estimator.last_frame_index();
+      })) {
+    s.restored_frame = *restored;
   }
 }
 

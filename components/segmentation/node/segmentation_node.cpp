@@ -33,24 +33,6 @@ struct StreamSegmentation {
   double save_ms = 0.0;  // total time of save_state() and the ring's save (synced write, removals)
 };
 
-// Restores the newest kept state before FIRST_FRAME, the first frame this process received of the
-// stream (the one of FIRST_FRAME - 1 continues exactly; an older one leaves the shift check out for
-// the first frame, as no state does).
-void restore_kept_state(StreamSegmentation& s, const std::string& stream, int64_t first_frame) {
-  const auto choice = restore_before(*s.states, first_frame, [&](const std::vector<uint8_t>& bytes) {
-    s.segmenter.restore_state(bytes);
-    return s.segmenter.last_frame_index();
-  });
-  for (const auto& refused : choice.refused) {
-    spdlog::warn("stream '{}': passed over a damaged segmentation state for an older one: {}", stream, refused);
-  }
-  if (choice.restored) {
-    spdlog::info("stream '{}': restored the segmentation state at frame {}: the newest kept before the first frame "
-                 "received ({})",
-                 stream, *choice.restored, first_frame);
-  }
-}
-
 int segmentation_main(int argc, char** argv) {
   dds::NodeOptions node;
   double upstream_timeout_s = 0.0;
@@ -94,7 +76,12 @@ int segmentation_main(int argc, char** argv) {
                     auto [it, fresh] = streams_seen.try_emplace(stream, StreamSegmentation{segmentation::Segmenter(options, config.scene)});
                     if (fresh && !state_dir.empty()) {
                       it->second.states.emplace(state_dir, "segmentation_state", stream, state_keep);
-                      restore_kept_state(it->second, stream, index);
+                      // The state of index - 1 continues exactly; an older one leaves the shift check out
+                      // for the first frame, as no state does.
+                      restore_and_report(*it->second.states, stream, index, [&](const std::vector<uint8_t>& bytes) {
+                        it->second.segmenter.restore_state(bytes);
+                        return it->second.segmenter.last_frame_index();
+                      });
                     }
                     return std::optional(dds::to_msg(it->second.segmenter.process(frame, motion)));
                   },

@@ -71,4 +71,11 @@ struct RestoreChoice {
 RestoreChoice restore_before(const StateRing& ring, int64_t first_frame,
                              const std::function<int64_t(const std::vector<uint8_t>&)>& restore);
 
+// restore_before() as a node does it on the first frame it receives of STREAM, saying what it did in
+// the log: the states passed over as damaged (warnings), the one restored and its size, the kept
+// states after it that go unused, or that every kept state is of a later frame (a warning: the
+// stream starts afresh rather than skip the frames up to one). Returns the frame restored.
+std::optional<int64_t> restore_and_report(const StateRing& ring, const std::string& stream, int64_t first_frame,
+                                          const std::function<int64_t(const std::vector<uint8_t>&)>& restore);
+
 }  // namespace uavmot
