@@ -6,20 +6,17 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <vector>
 
 #include <opencv2/core.hpp>
 
 #include "fuzz_targets.hpp"
-#include "uavmot/core/checksum.hpp"
+#include "state_envelope.hpp"
 #include "uavmot/core/error.hpp"
 #include "uavmot/motion/motion_estimator.hpp"
 
 namespace uavmot::fuzz {
 namespace {
-
-constexpr size_t kHeaderBytes = 8 + 4 + 8 + 8;  // magic, version, payload size, checksum
 
 // A small textured frame that moves by `k` px: what the restored state is carried through.
 Frame frame(int k) {
@@ -38,12 +35,7 @@ Frame frame(int k) {
 
 int motion_state(const uint8_t* data, size_t size) {
   std::vector<uint8_t> bytes(data, data + size);
-  if (bytes.size() >= kHeaderBytes) {
-    const uint64_t payload = bytes.size() - kHeaderBytes;
-    const uint64_t checksum = fnv1a64(bytes.data() + kHeaderBytes, payload);
-    std::memcpy(bytes.data() + 12, &payload, sizeof payload);
-    std::memcpy(bytes.data() + 20, &checksum, sizeof checksum);
-  }
+  match_envelope(bytes);
   motion::MotionEstimator estimator(motion::MotionOptions{});
   try {
     estimator.restore_state(bytes);

@@ -6,7 +6,6 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <cstring>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -14,9 +13,8 @@
 #include <opencv2/core.hpp>
 
 #include "fuzz_targets.hpp"
-#include "uavmot/core/checksum.hpp"
+#include "state_envelope.hpp"
 #include "uavmot/core/error.hpp"
-#include "uavmot/core/state_codec.hpp"
 #include "uavmot/segmentation/segmenter.hpp"
 
 namespace uavmot::fuzz {
@@ -56,13 +54,7 @@ Step step(const std::string& stream, int64_t index) {
 
 int segmentation_state(const uint8_t* data, size_t size) {
   std::vector<uint8_t> bytes(data, data + size);
-  constexpr size_t kHeader = state_codec::kEnvelopeBytes;
-  if (bytes.size() >= kHeader) {
-    const uint64_t payload = bytes.size() - kHeader;
-    const uint64_t checksum = fnv1a64(bytes.data() + kHeader, payload);
-    std::memcpy(bytes.data() + 12, &payload, sizeof payload);
-    std::memcpy(bytes.data() + 20, &checksum, sizeof checksum);
-  }
+  match_envelope(bytes);
   SceneInfo scene;
   scene.gsd_m = 0.3;
   scene.fps = 25.0;
@@ -72,15 +64,11 @@ int segmentation_state(const uint8_t* data, size_t size) {
   } catch (const InputError&) {
     return 0;
   }
-  // The stream the state names, so that the shift check uses its windows; then one more frame.
-  std::vector<uint8_t> saved = segmenter.save_state();
-  if (saved != bytes) throw std::logic_error("an accepted segmentation state saves back to other bytes");
+  if (segmenter.save_state() != bytes) throw std::logic_error("an accepted segmentation state saves back to other bytes");
+  // The next frames of the stream the state names, so that the shift check uses its windows.
   const int64_t next = segmenter.last_frame_index() + 1;
-  state_codec::Reader r(saved.data() + kHeader, saved.size() - kHeader, "fuzz");
-  const uint64_t stream_bytes = r.get<uint64_t>();
-  const std::string stream(reinterpret_cast<const char*>(r.get_bytes(stream_bytes)), stream_bytes);
   for (int64_t k = next; k < next + 2; ++k) {
-    const Step s = step(stream, k);
+    const Step s = step(segmenter.last_stream_id(), k);
     segmenter.process(s.frame, s.motion);
   }
   return 0;

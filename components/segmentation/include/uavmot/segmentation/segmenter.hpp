@@ -87,7 +87,8 @@ class Segmenter {
   // refuses (another format, damaged).
   std::vector<uint8_t> save_state() const;
   void restore_state(const std::vector<uint8_t>& bytes);
-  // The frame segmented last, -1 before any.
+  // The stream and frame segmented last, -1 before any.
+  const std::string& last_stream_id() const { return previous_stream_; }
   int64_t last_frame_index() const { return previous_frame_; }
 
  private:
