@@ -324,6 +324,10 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   const bool structure_found = parallax_.model().valid || parallax_.model().provisional;
   MotionOptions decision_options = o;
   if (!structure_found) decision_options.min_moving_speed_px = flat_scene_min_speed_px_;
+  // One frame's velocity decides (MotionOptions::strong_motion_factor) only where it can be trusted:
+  // not in a low-contrast frame, whose corners cannot place themselves well enough (lowsnr: twice
+  // the false alarms), nor in one with 3-D structure, whose silhouettes slide (urban3d, oblique).
+  if (response_scale_ < 1.0 || structure_found) decision_options.strong_motion_factor = 0.0;
   const double faded_corner_threshold = o.faded_corner_ratio * o.min_corner_response * response_scale_;
   for (size_t k = 0; k < survivors.size(); ++k) {
     LiveFeature& f = survivors[k];

@@ -70,7 +70,10 @@ bool MotionClassifier::update(const VelocityEstimate& e, int track_frames, const
   const double threshold = std::max({o.moving_sigma_factor * e.sigma, o.min_moving_speed_px, floor_px});
   const bool argues_for_change = moving_ ? speed < o.release_ratio * threshold : speed > threshold;
   streak_ = argues_for_change ? streak_ + 1 : 0;
-  if (streak_ >= o.confirm_frames) {
+  // Only a feature's first decision: a corner that sat still and jumps is a slip or a silhouette.
+  const bool strong_start = !moving_ && track_frames == o.min_track_frames && o.strong_motion_factor > 0.0 &&
+                            speed > o.strong_motion_factor * threshold;
+  if (streak_ >= o.confirm_frames || strong_start) {
     moving_ = !moving_;
     streak_ = 0;
   }

@@ -111,6 +111,12 @@ struct MotionOptions {
   double scene_noise_factor = 6.0;     // ... and > this times the frame's robust velocity noise (0 = unused)
   double scene_noise_max_px = 0.25;    // ... which counts up to this (px/frame)
   int confirm_frames = 2;           // consecutive significant frames to become moving (and to stop)
+  // ... except that a new feature whose first velocity is above this many times the threshold is
+  // moving at once: a car that has just come into view is found a frame earlier (fast cameras,
+  // where cars are in view for little time). Not in a low-contrast frame nor in one where the
+  // parallax fit found 3-D structure. 0 = off, the default: on real FMV it added false tracks at
+  // the image border (docs/motion.md).
+  double strong_motion_factor = 0.0;
   double release_ratio = 0.7;       // a moving feature stops below this fraction of the threshold
 
   // --- Parallax of static 3-D structure (plane + parallax, docs/motion.md) -------------------
@@ -217,6 +223,7 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("scene_noise_factor", o.scene_noise_factor, Range<double>{0.0, 100.0});
   visit("scene_noise_max_px", o.scene_noise_max_px, Range<double>{0.0, 1000.0});
   visit("confirm_frames", o.confirm_frames, Range<int>{1, 100});
+  visit("strong_motion_factor", o.strong_motion_factor, Range<double>{0.0, 100.0});
   visit("release_ratio", o.release_ratio, Range<double>{0.0, 1.0});
   visit("parallax_rejection", o.parallax_rejection, Flag{});
   visit("parallax_both_sides", o.parallax_both_sides, Flag{});
