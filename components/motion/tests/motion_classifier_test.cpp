@@ -47,6 +47,15 @@ TEST(MotionClassifier, OneFrameAboveTheStrongFactorStartsMotionAtOnce) {
   EXPECT_FALSE(noisy.update(speed(0.45, 0.1), 2, o));  // threshold 0.4, strong 0.8
 }
 
+TEST(MotionClassifier, OnlyANewFeatureStartsAtOnceAStillOneThatJumpsWaits) {
+  const MotionOptions o = options(2.0);
+  MotionClassifier still;  // sat still for a while, then one large step: a slip or a sliding silhouette
+  EXPECT_FALSE(still.update(speed(0.0), 2, o));
+  EXPECT_FALSE(still.update(speed(0.0), 3, o));
+  EXPECT_FALSE(still.update(speed(1.0), 4, o));
+  EXPECT_FALSE(still.update(speed(0.0), 5, o));
+}
+
 TEST(MotionClassifier, StoppingStillNeedsConfirmFramesAndYoungFeaturesNeverMove) {
   const MotionOptions o = options(2.0);
   MotionClassifier c;
