@@ -67,5 +67,16 @@ TEST(Dispatcher, PassesArgumentsAndExitCodeThrough) {
   EXPECT_NE(r.output.find("no-such-preset"), std::string::npos) << r.output;
 }
 
+TEST(Dispatcher, ANodesStateKeepIsRefusedWithWhatItCounts) {
+  // Refused while parsing, before any DDS participant: exit 2 and a message naming the states.
+  const Outcome segmentation = run({"segmentation", "--state-keep", "0"});
+  EXPECT_EQ(segmentation.code, 2) << segmentation.output;
+  EXPECT_NE(segmentation.output.find("'0' is not a number of saved segmentation states"), std::string::npos)
+      << segmentation.output;
+  const Outcome motion = run({"motion", "--state-keep", "2.5"});
+  EXPECT_EQ(motion.code, 2) << motion.output;
+  EXPECT_NE(motion.output.find("'2.5' is not a number of saved motion states"), std::string::npos) << motion.output;
+}
+
 }  // namespace
 }  // namespace uavmot

@@ -6,6 +6,7 @@
 #include <functional>
 #include <iostream>
 #include <sstream>
+#include <string>
 
 #include <opencv2/core/utility.hpp>
 
@@ -45,6 +46,21 @@ CLI::Validator finite_range(double low, double high) {
   bounds << "[" << low << " - " << high << "]";
   return finite_number([low, high](double v) { return v >= low && v <= high; }, "in " + bounds.str(),
                        "FLOAT in " + bounds.str(), "FiniteRange");
+}
+
+CLI::Validator states_kept_check(const std::string& what) {
+  return CLI::Validator(
+      [what](std::string& value) -> std::string {
+        try {
+          size_t used = 0;
+          const long long n = std::stoll(value, &used);
+          if (used == value.size() && n >= 1 && n <= 1000000) return {};
+        } catch (const std::exception&) {
+        }
+        return "'" + value + "' is not a number of saved " + what + " states (per stream) to keep: " +
+               "give a whole number from 1 to 1000000";
+      },
+      "N>=1");
 }
 
 void apply_opencv_threads_from_environment() {

@@ -69,22 +69,6 @@ void restore_kept_state(StreamMotion& s, const std::string& stream, int64_t firs
   }
 }
 
-// --state-keep: at least 1, with a message that says what the number is.
-CLI::Validator states_kept_check() {
-  return CLI::Validator(
-      [](std::string& value) -> std::string {
-        try {
-          size_t used = 0;
-          const long long n = std::stoll(value, &used);
-          if (used == value.size() && n >= 1 && n <= 1000000) return {};
-        } catch (const std::exception&) {
-        }
-        return "'" + value + "' is not a number of saved motion states (per stream) to keep: "
-               "give a whole number of at least 1";
-      },
-      "N>=1");
-}
-
 int motion_main(int argc, char** argv) {
   dds::NodeOptions node;
   double upstream_timeout_s = 0.0;
@@ -107,7 +91,7 @@ int motion_main(int argc, char** argv) {
     app.add_option("--state-keep", state_keep,
                    "saved states kept per stream (the newest N): a new launch can continue from any of their "
                    "frames, e.g. the tracker's when motion had got further")
-        ->check(states_kept_check())
+        ->check(states_kept_check("motion"))
         ->capture_default_str();
     dds::add_upstream_timeout_option(app, upstream_timeout_s);
     dds::add_node_options(app, node);

@@ -53,7 +53,7 @@ int segmentation_main(int argc, char** argv) {
                    "save each stream's segmentation state (the previous frame's cluster windows) here after every "
                    "frame and restore the one before the first frame received on start");
     app.add_option("--state-keep", state_keep, "saved states kept per stream (the newest N)")
-        ->check(CLI::Range(1, 1000000))
+        ->check(states_kept_check("segmentation"))
         ->capture_default_str();
     dds::add_upstream_timeout_option(app, upstream_timeout_s);
     dds::add_node_options(app, node);

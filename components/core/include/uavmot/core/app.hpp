@@ -34,6 +34,10 @@ CLI::Validator positive_finite();
 // A finite number in [low, high], for floating-point options instead of CLI11's Range (same hole).
 CLI::Validator finite_range(double low, double high);
 
+// --state-keep of a node that keeps saved states (motion, segmentation): a whole number from 1 to
+// 1000000, refused with a message that says what the number counts ("saved <what> states").
+CLI::Validator states_kept_check(const std::string& what);
+
 // OPENCV_FOR_THREADS_NUM=N (1..256) as cv::setNumThreads(N); run_app calls it first. OpenCV 4.6's
 // TBB backend ignores the variable on its own: its workers stay, spin after every parallel_for_
 // (connectedComponents, resize, ...), and took a third of the segmentation process's CPU time in
