@@ -59,9 +59,10 @@ double scene_noise_floor(std::vector<double> speeds, const MotionOptions& option
 
 // Moving/stationary decision with hysteresis: a feature becomes moving after confirm_frames
 // consecutive frames with a significant speed (> max(moving_sigma_factor * sigma,
-// min_moving_speed_px, the scene noise floor)), or at once above strong_motion_factor times that
-// threshold, and stops after confirm_frames consecutive frames below release_ratio times the
-// threshold. Features seen in fewer than min_track_frames frames are stationary.
+// min_moving_speed_px, the scene noise floor)), or at its first decision (seen in exactly
+// min_track_frames frames) when above strong_motion_factor times that threshold, and stops after
+// confirm_frames consecutive frames below release_ratio times the threshold. Features seen in fewer
+// than min_track_frames frames are stationary.
 class MotionClassifier {
  public:
   // `floor_px`: a lower bound on the threshold from the whole frame's noise (scene_noise_floor()).
