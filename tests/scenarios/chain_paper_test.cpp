@@ -93,15 +93,20 @@ TEST(ChainPaperScenario, ThreeSeedsHoldTheirCorrectRatePrecisionAndFalseAlarms) 
   // Issue 18's position target (<= 1.2 px) is held here with the mean.
   // 2026-11-28, session 28, regions moved onto their features (docs/tracking.md): correct 95.61 / 89.78 / 93.73 %,
   // e_w 1.93 / 2.00 / 2.07 px, false alarms 1.05 / 1.99 / 1.37 per frame (0 / 0 / 17 boxes on parked vehicles).
-  EXPECT_GE(correct, 0.92);
-  EXPECT_GE(worst_correct, 0.885);
+  // 2026-11-29, session 34, creeping vehicles found below the speed floor (docs/motion.md, `creep_speed_factor`): correct
+  // 96.09 / 91.72 / 94.06 % -> 96.33 / 92.26 / 94.90 %, false alarms 1.94 / 1.26 / 1.37 -> 1.96 / 1.65 / 1.40 per frame.
+  // Seed 2's extra false alarms are one track beside a slow truck for 85 frames, held by ground corners the truck drags
+  // but too far from its own moving corners for the rule's veto; the held-out seeds 100-104 gained 0.39 points for
+  // 0.15 false alarms per frame (docs/tracking.md, session 34). The correct-rate bounds fail without the rule.
+  EXPECT_GE(correct, 0.94);
+  EXPECT_GE(worst_correct, 0.92);
   EXPECT_EQ(under, 0);
   EXPECT_LE(over, 0.005);
   EXPECT_LE(ex, 1.1);
   EXPECT_LE(ey, 1.0);
   EXPECT_LE(ew, 2.1);
   EXPECT_LE(el, 2.9);
-  EXPECT_LE(fa, 1.6);
+  EXPECT_LE(fa, 1.7);
   EXPECT_GE(mota, 0.89);
 }
 
@@ -151,6 +156,18 @@ TEST(ChainLowSnrScenario, ThreeSeedsOfLowContrastHoldTheirCorrectRateAndFalseAla
   EXPECT_GE(f.correct, 0.785);
   EXPECT_GE(f.worst_correct, 0.76);
   EXPECT_LE(f.false_alarms, 4.9);
+}
+
+// `dense` (queues at junctions, cars creeping at 0.05-0.15 px/frame, under the speed floor of frames without 3-D
+// structure): with the creep rule (docs/motion.md, `creep_speed_factor`) seeds 1-3, 150 frames, went from 79.64 / 74.49
+// / 80.80 % correct, 4.90 / 2.90 / 3.35 false alarms per frame (mean 78.3 %, 3.72) to 85.11 / 78.18 / 84.88 %, 3.97 /
+// 3.09 / 3.31 (mean 82.7 %, 3.45). Issue 18's target (>= 80 % on every seed, <= 1 false alarm) is not met yet.
+TEST(ChainDenseScenario, ThreeSeedsOfQueuesHoldTheirCorrectRateAndFalseAlarms) {
+  SeedFigures f;
+  ASSERT_NO_FATAL_FAILURE(score_seeds_1_to_3("dense", f));
+  EXPECT_GE(f.correct, 0.81);
+  EXPECT_GE(f.worst_correct, 0.77);
+  EXPECT_LE(f.false_alarms, 3.8);
 }
 
 }  // namespace

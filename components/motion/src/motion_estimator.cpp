@@ -15,6 +15,7 @@
 
 #include "background_flow.hpp"
 #include "change_mask.hpp"
+#include "creeping_features.hpp"
 #include "dragged_feature.hpp"
 #include "grid_corner_detector.hpp"
 #include "homography_estimation.hpp"
@@ -330,7 +331,7 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   if (response_scale_ < 1.0 || structure_found) decision_options.strong_motion_factor = 0.0;
   const double faded_corner_threshold = o.faded_corner_ratio * o.min_corner_response * response_scale_;
   for (size_t k = 0; k < survivors.size(); ++k) {
-    LiveFeature& f = survivors[k];
+    const LiveFeature& f = survivors[k];
     // A corner on a roof's or crown's silhouette slides off its epipolar line: it does not start moving.
     if (f.velocity.available) decided[k].velocity = edges.decided_velocity(parallax_sample(f, h), decided[k].velocity, f.classifier.moving());
     // In a low-contrast frame a corner far below the threshold (noise on a weak corner, an edge it
@@ -338,7 +339,32 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
     if (response_scale_ < 1.0 && !f.classifier.moving() && f.corner_strength < faded_corner_threshold) {
       decided[k].velocity = cv::Vec2d(0.0, 0.0);
     }
-    f.classifier.update(decided[k], static_cast<int>(f.age), decision_options, floor_px);
+  }
+  // Cars creeping in queues: a lower floor where no faster neighbour says "dragged" (creeping_features.hpp).
+  MotionOptions creep_options = decision_options;
+  std::vector<unsigned char> creeping(survivors.size(), 0);
+  if (!structure_found && response_scale_ >= 1.0 && o.creep_speed_factor < 1.0) {
+    CreepRule rule;
+    rule.floor_px = std::max(decision_options.min_moving_speed_px, floor_px);
+    rule.creep_floor_px = std::max({o.creep_speed_factor * decision_options.min_moving_speed_px,
+                                    decision_options.min_moving_speed_px - o.creep_max_drop_px, floor_px});
+    rule.neighbour_radius_px = o.creep_neighbour_lengths * scene_.metres_to_px(scene_.vehicle_length_m);
+    rule.neighbour_ratio = o.creep_neighbour_ratio;
+    rule.min_support = o.creep_min_support;
+    creep_options.min_moving_speed_px = rule.creep_floor_px;
+    std::vector<cv::Point2f> where(survivors.size());
+    std::vector<cv::Vec2d> velocity(survivors.size());
+    std::vector<unsigned char> decidable(survivors.size(), 0);
+    for (size_t k = 0; k < survivors.size(); ++k) {
+      where[k] = survivors[k].position;
+      velocity[k] = decided[k].velocity;
+      decidable[k] = decided[k].available && survivors[k].history.size() >= o.min_track_frames;
+    }
+    creeping = creeping_features(where, velocity, decidable, rule);
+  }
+  for (size_t k = 0; k < survivors.size(); ++k) {
+    survivors[k].classifier.update(decided[k], static_cast<int>(survivors[k].age), creeping[k] ? creep_options : decision_options,
+                                   floor_px);
   }
   if (o.dragged_ratio > 0.0) {
     const Homography current_to_previous = h.inv();

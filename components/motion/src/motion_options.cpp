@@ -97,6 +97,11 @@ void validate(const MotionOptions& o) {
           "moving thresholds must be >= 0");
   require(o.confirm_frames >= 1, "confirm_frames must be >= 1");
   require(o.release_ratio >= 0.0 && o.release_ratio <= 1.0, "release_ratio must be in [0, 1]");
+  require(o.creep_speed_factor > 0.0 && o.creep_speed_factor <= 1.0, "creep_speed_factor must be in (0, 1] (1 = off)");
+  require(o.creep_max_drop_px >= 0.0, "creep_max_drop_px must be >= 0");
+  require(o.creep_neighbour_lengths >= 0.0, "creep_neighbour_lengths must be >= 0");
+  require(o.creep_neighbour_ratio >= 1.0, "creep_neighbour_ratio must be >= 1");
+  require(o.creep_min_support >= 1, "creep_min_support must be >= 1");
   require(o.strong_motion_factor == 0.0 || o.strong_motion_factor >= 1.0,
           "strong_motion_factor must be 0 (off) or >= 1 (a multiple of the moving threshold)");
   require(o.parallax_min_support >= 2, "parallax_min_support must be >= 2 (two lines fix an epipole)");

@@ -198,6 +198,15 @@ TEST(MotionOptions, FlatSceneFloorLowersThePixelFloorOnlyDownToTheGroundSpeed) {
   EXPECT_THROW(load_motion_options(ConfigNode::load_string("flat_scene_speed_factor: 1.5\n", "m.yaml")), InputError);
 }
 
+TEST(MotionOptions, TheCreepRuleRefusesFactorsOutsideItsRange) {
+  EXPECT_NO_THROW(load_motion_options(ConfigNode::load_string("creep_speed_factor: 0.6\n", "m.yaml")));
+  for (const char* bad : {"creep_speed_factor: 0\n", "creep_speed_factor: 1.2\n", "creep_speed_factor: .nan\n",
+                          "creep_neighbour_ratio: 0.5\n", "creep_neighbour_lengths: -1\n", "creep_min_support: 0\n",
+                          "creep_max_drop_px: -0.1\n"}) {
+    EXPECT_THROW(load_motion_options(ConfigNode::load_string(bad, "m.yaml")), InputError) << bad;
+  }
+}
+
 TEST(MotionOptions, EstimatorRejectsInconsistentOptions) {
   MotionOptions o;
   o.lk_window_px = 10;

@@ -108,6 +108,17 @@ struct MotionOptions {
   // provisional) the pixel floor counts this much (the ground-speed floor stays whole): what it
   // guards against most is parallax. 1 = off.
   double flat_scene_speed_factor = 0.8;
+  // ... and a feature may count as moving down to creep_speed_factor x that floor (the ground-speed
+  // floor too), but at most creep_max_drop_px below it, when no feature within creep_neighbour_lengths
+  // vehicle lengths moves more than creep_neighbour_ratio times as fast its way: a car creeping in a
+  // queue, not a ground corner dragged by a passing one (creeping_features.hpp). The neighbours tell
+  // nothing about parallax or a parked car's changing look, which on real video reach a few tenths
+  // of a pixel per frame: hence the drop's bound. Not in low-contrast frames. 1 = off.
+  double creep_speed_factor = 0.5;
+  double creep_max_drop_px = 0.05;
+  double creep_neighbour_lengths = 1.0;
+  double creep_neighbour_ratio = 1.5;
+  int creep_min_support = 2;  // ... and with this many candidates (itself included) going its way near it
   double scene_noise_factor = 6.0;     // ... and > this times the frame's robust velocity noise (0 = unused)
   double scene_noise_max_px = 0.25;    // ... which counts up to this (px/frame)
   int confirm_frames = 2;           // consecutive significant frames to become moving (and to stop)
@@ -220,6 +231,11 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("min_moving_speed_px", o.min_moving_speed_px, Range<double>{0.0, 1000.0});
   visit("min_moving_speed_mps", o.min_moving_speed_mps, Range<double>{0.0, 1000.0});
   visit("flat_scene_speed_factor", o.flat_scene_speed_factor, Range<double>{0.0, 1.0});
+  visit("creep_speed_factor", o.creep_speed_factor, Range<double>{0.01, 1.0});
+  visit("creep_max_drop_px", o.creep_max_drop_px, Range<double>{0.0, 1000.0});
+  visit("creep_neighbour_lengths", o.creep_neighbour_lengths, Range<double>{0.0, 100.0});
+  visit("creep_neighbour_ratio", o.creep_neighbour_ratio, Range<double>{1.0, 1000.0});
+  visit("creep_min_support", o.creep_min_support, Range<int>{1, 1000});
   visit("scene_noise_factor", o.scene_noise_factor, Range<double>{0.0, 100.0});
   visit("scene_noise_max_px", o.scene_noise_max_px, Range<double>{0.0, 1000.0});
   visit("confirm_frames", o.confirm_frames, Range<int>{1, 100});
