@@ -1,5 +1,6 @@
 #include "creeping_features.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
@@ -26,8 +27,9 @@ std::vector<unsigned char> creeping_features(const std::vector<cv::Point2f>& pos
   if (!(rule.creep_floor_px < rule.floor_px) || !(rule.neighbour_radius_px > 0.0)) return creeping;
   std::vector<double> speed(n, 0.0);
   for (size_t k = 0; k < n; ++k) speed[k] = std::hypot(velocities[k][0], velocities[k][1]);
-  // Only features faster than ratio x the creep floor can veto: bucket them in cells of one radius.
-  const double cell = rule.neighbour_radius_px;
+  // Only features faster than ratio x the creep floor can veto: bucket them in cells of one radius
+  // (at least a pixel, so that a tiny radius cannot overflow the cell index).
+  const double cell = std::max(rule.neighbour_radius_px, 1.0);
   const auto cell_x = [&](size_t k) { return static_cast<int>(std::floor(positions[k].x / cell)); };
   const auto cell_y = [&](size_t k) { return static_cast<int>(std::floor(positions[k].y / cell)); };
   Buckets fast;

@@ -94,6 +94,10 @@ TEST(CreepingFeatures, OnlyDecidedFeaturesCountAndTheRuleCanBeOff) {
   off.creep_floor_px = off.floor_px;  // creep_speed_factor 1, or a noise floor above the creep floor
   creeping = creeping_features(s.at, s.v, s.decidable, off);
   EXPECT_FALSE(creeping[slow]);
+  CreepRule tiny = rule();
+  tiny.neighbour_radius_px = 1e-9;  // creep_neighbour_lengths near 0: no neighbour, no support, no crash
+  creeping = creeping_features(s.at, s.v, s.decidable, tiny);
+  EXPECT_FALSE(creeping[slow]);
 }
 
 }  // namespace
