@@ -49,16 +49,17 @@ CLI::Validator finite_range(double low, double high) {
 }
 
 CLI::Validator states_kept_check(const std::string& what) {
+  constexpr long long kMostStatesKept = 1000000;
   return CLI::Validator(
       [what](std::string& value) -> std::string {
         try {
           size_t used = 0;
           const long long n = std::stoll(value, &used);
-          if (used == value.size() && n >= 1 && n <= 1000000) return {};
+          if (used == value.size() && n >= 1 && n <= kMostStatesKept) return {};
         } catch (const std::exception&) {
         }
         return "'" + value + "' is not a number of saved " + what + " states (per stream) to keep: " +
-               "give a whole number from 1 to 1000000";
+               "give a whole number from 1 to " + std::to_string(kMostStatesKept);
       },
       "N>=1");
 }
