@@ -2,20 +2,14 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdint>
-#include <unordered_map>
+
+#include "uavmot/core/spatial_grid.hpp"
 
 namespace uavmot::motion {
 
 namespace {
 
 constexpr double kSameWayCosine = 0.5;  // within 60 degrees
-
-uint64_t cell_key(int cx, int cy) {
-  return (static_cast<uint64_t>(static_cast<uint32_t>(cx)) << 32) | static_cast<uint32_t>(cy);
-}
-
-using Buckets = std::unordered_map<uint64_t, std::vector<size_t>>;
 
 }  // namespace
 
@@ -27,38 +21,29 @@ std::vector<unsigned char> creeping_features(const std::vector<cv::Point2f>& pos
   if (!(rule.creep_floor_px < rule.floor_px) || !(rule.neighbour_radius_px > 0.0)) return creeping;
   std::vector<double> speed(n, 0.0);
   for (size_t k = 0; k < n; ++k) speed[k] = std::hypot(velocities[k][0], velocities[k][1]);
-  // Only features faster than ratio x the creep floor can veto: bucket them in cells of one radius
-  // (at least a pixel, so that a tiny radius cannot overflow the cell index).
+  const auto point = [&](size_t k) { return cv::Rect2d(positions[k].x, positions[k].y, 0.0, 0.0); };
+  // Only features faster than ratio x the creep floor can veto; the candidates give each other
+  // support. Cells of one radius (at least a pixel: a tiny radius would make cells without end).
   const double cell = std::max(rule.neighbour_radius_px, 1.0);
-  const auto cell_x = [&](size_t k) { return static_cast<int>(std::floor(positions[k].x / cell)); };
-  const auto cell_y = [&](size_t k) { return static_cast<int>(std::floor(positions[k].y / cell)); };
-  Buckets fast;
-  for (size_t k = 0; k < n; ++k) {
-    if (decidable[k] && speed[k] > rule.neighbour_ratio * rule.creep_floor_px) fast[cell_key(cell_x(k), cell_y(k))].push_back(k);
-  }
-  const double radius2 = rule.neighbour_radius_px * rule.neighbour_radius_px;
-  // The candidates, bucketed the same way, for the support count.
-  Buckets slow;
+  SpatialGrid fast(cell), slow(cell);
   std::vector<size_t> candidates;
   for (size_t k = 0; k < n; ++k) {
-    if (!decidable[k] || speed[k] < rule.creep_floor_px || speed[k] >= rule.floor_px) continue;
-    candidates.push_back(k);
-    slow[cell_key(cell_x(k), cell_y(k))].push_back(k);
+    if (!decidable[k]) continue;
+    if (speed[k] > rule.neighbour_ratio * rule.creep_floor_px) fast.insert(static_cast<int>(k), point(k));
+    if (speed[k] >= rule.creep_floor_px && speed[k] < rule.floor_px) {
+      candidates.push_back(k);
+      slow.insert(static_cast<int>(k), point(k));
+    }
   }
-  // Visits every feature of `buckets` within the radius of k until `stop` returns true.
-  const auto any_near = [&](const Buckets& buckets, size_t k, const auto& stop) {
-    const int cx = cell_x(k), cy = cell_y(k);
-    for (int dy = -1; dy <= 1; ++dy) {
-      for (int dx = -1; dx <= 1; ++dx) {
-        const auto bucket = buckets.find(cell_key(cx + dx, cy + dy));
-        if (bucket == buckets.end()) continue;
-        for (const size_t j : bucket->second) {
-          if (j == k) continue;
-          const double ddx = positions[j].x - positions[k].x;
-          const double ddy = positions[j].y - positions[k].y;
-          if (ddx * ddx + ddy * ddy <= radius2 && stop(j)) return true;
-        }
-      }
+  const double radius2 = rule.neighbour_radius_px * rule.neighbour_radius_px;
+  // Whether `stop` returns true for a feature of `grid` within the radius of k (k itself left out).
+  const auto any_near = [&](const SpatialGrid& grid, size_t k, const auto& stop) {
+    for (const int i : grid.query_near(point(k), rule.neighbour_radius_px)) {
+      const auto j = static_cast<size_t>(i);
+      if (j == k) continue;
+      const double dx = positions[j].x - positions[k].x;
+      const double dy = positions[j].y - positions[k].y;
+      if (dx * dx + dy * dy <= radius2 && stop(j)) return true;
     }
     return false;
   };

@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "uavmot/core/chain_types.hpp"
-#include "spatial_grid.hpp"
+#include "uavmot/core/spatial_grid.hpp"
 #include "track_in_frame.hpp"
 #include "uavmot/tracking/tracker_options.hpp"
 #include "uavmot/tracking/tracker_state.hpp"

@@ -5,8 +5,8 @@
 
 #include "kalman_model.hpp"
 #include "piece_merger.hpp"
-#include "spatial_grid.hpp"
 #include "split_merge.hpp"
+#include "uavmot/core/spatial_grid.hpp"
 
 namespace uavmot::tracking {
 namespace {

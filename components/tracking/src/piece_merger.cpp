@@ -3,8 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
-#include "spatial_grid.hpp"
 #include "split_merge.hpp"
+#include "uavmot/core/spatial_grid.hpp"
 #include "updater.hpp"
 
 namespace uavmot::tracking {

@@ -2,7 +2,7 @@
 
 #include <algorithm>
 
-#include "spatial_grid.hpp"
+#include "uavmot/core/spatial_grid.hpp"
 
 namespace uavmot::tracking {
 

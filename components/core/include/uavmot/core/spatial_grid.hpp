@@ -1,7 +1,8 @@
 #pragma once
-// A uniform grid over axis-aligned bounds, so that finding the boxes near a box costs O(1) on average
-// and the tracker's cost grows linearly with the number of objects. Query results are sorted, so
-// nothing depends on hash order.
+// A uniform grid over axis-aligned bounds (boxes, or points as empty boxes), so that finding what lies
+// near a box or point costs O(1) on average: the tracker's associations and the motion layer's
+// neighbour tests grow linearly with the number of objects. Query results are sorted, so nothing
+// depends on hash order.
 
 #include <cstdint>
 #include <unordered_map>
@@ -9,7 +10,7 @@
 
 #include <opencv2/core/types.hpp>
 
-namespace uavmot::tracking {
+namespace uavmot {
 
 class SpatialGrid {
  public:
@@ -29,4 +30,4 @@ class SpatialGrid {
   std::unordered_map<int64_t, std::vector<int>> cells_;
 };
 
-}  // namespace uavmot::tracking
+}  // namespace uavmot

@@ -1,9 +1,9 @@
-#include "spatial_grid.hpp"
+#include "uavmot/core/spatial_grid.hpp"
 
 #include <algorithm>
 #include <cmath>
 
-namespace uavmot::tracking {
+namespace uavmot {
 namespace {
 // Cells per query side beyond which a box is treated as huge and clamped (a corrupt box must not
 // make a query walk millions of cells).
@@ -48,4 +48,4 @@ std::vector<int> SpatialGrid::query(const cv::Rect2d& bounds) const {
   return out;
 }
 
-}  // namespace uavmot::tracking
+}  // namespace uavmot
