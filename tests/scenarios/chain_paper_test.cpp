@@ -98,6 +98,9 @@ TEST(ChainPaperScenario, ThreeSeedsHoldTheirCorrectRatePrecisionAndFalseAlarms) 
   // Seed 2's extra false alarms are one track beside a slow truck for 85 frames, held by ground corners the truck drags
   // but too far from its own moving corners for the rule's veto; the held-out seeds 100-104 gained 0.39 points for
   // 0.15 false alarms per frame (docs/tracking.md, session 34). The correct-rate bounds fail without the rule.
+  // 2026-11-29, session 35, boxes moved onto their motion evidence (docs/segmentation.md, "Motion evidence"): correct
+  // 96.33 / 92.26 / 94.90 % -> 96.50 / 92.96 / 94.91 %, false alarms 1.96 / 1.65 / 1.40 -> 1.53 / 0.98 / 1.33 per frame
+  // (mean 1.67 -> 1.28; the false-alarm bound fails without it). Held-out seeds 100-104 first (docs/tracking.md).
   EXPECT_GE(correct, 0.94);
   EXPECT_GE(worst_correct, 0.92);
   EXPECT_EQ(under, 0);
@@ -106,7 +109,7 @@ TEST(ChainPaperScenario, ThreeSeedsHoldTheirCorrectRatePrecisionAndFalseAlarms) 
   EXPECT_LE(ey, 1.0);
   EXPECT_LE(ew, 2.1);
   EXPECT_LE(el, 2.9);
-  EXPECT_LE(fa, 1.7);
+  EXPECT_LE(fa, 1.45);
   EXPECT_GE(mota, 0.89);
 }
 
@@ -135,13 +138,16 @@ void score_seeds_1_to_3(const std::string& preset, SeedFigures& out) {
 // 8.41 false alarms per frame (mean 63.2 %, 6.84); with 7 px 66.14 / 68.76 / 68.92 %, 4.55 / 5.09
 // / 6.00 (mean 67.9 %, 5.21). With the lower speed floor in frames without 3-D structure
 // (`flat_scene_speed_factor` 0.8, docs/motion.md) 67.37 / 69.53 / 69.62 %, 5.59 / 5.25 / 6.37
-// (mean 68.8 %, 5.74). Issue 18's target for `small` (>= 80 %) is not met yet.
+// (mean 68.8 %, 5.74). Sessions 31-34 brought them to 72.21 / 72.06 / 73.16 %, 5.03 / 5.66 / 6.05 (mean 72.5 %,
+// 5.58); with the boxes moved onto their motion evidence (docs/segmentation.md, session 35: an 8 x 3 px road-grey car's
+// blob is mostly its shadow) 74.24 / 73.86 / 75.25 %, 3.70 / 4.22 / 4.97 (mean 74.5 %, 4.30): all three bounds fail
+// without it. Issue 18's target for `small` (>= 80 %) is not met yet.
 TEST(ChainSmallScenario, ThreeSeedsOfEightPixelCarsHoldTheirCorrectRateAndFalseAlarms) {
   SeedFigures f;
   ASSERT_NO_FATAL_FAILURE(score_seeds_1_to_3("small", f));
-  EXPECT_GE(f.correct, 0.685);
-  EXPECT_GE(f.worst_correct, 0.67);
-  EXPECT_LE(f.false_alarms, 5.9);
+  EXPECT_GE(f.correct, 0.735);
+  EXPECT_GE(f.worst_correct, 0.73);
+  EXPECT_LE(f.false_alarms, 4.7);
 }
 
 // `lowsnr` (contrast 0.6, noise sigma 6, JPEG 70, 55 % dark cars): most missed cars had no corner
@@ -149,25 +155,29 @@ TEST(ChainSmallScenario, ThreeSeedsOfEightPixelCarsHoldTheirCorrectRateAndFalseA
 // corners do not start moving in such frames (docs/motion.md, `contrast_reference_grey`,
 // `faded_corner_ratio`). Seeds 1-3, 150 frames: before 62.65 / 61.78 / 67.04 % correct, 4.63 /
 // 3.27 / 3.27 false alarms per frame (mean 63.8 %, 3.72); with it 83.12 / 77.18 / 79.22 %, 4.93 /
-// 4.18 / 4.69 (mean 79.8 %, 4.60). Issue 18's target (>= 80 %, <= 1 false alarm) is not met yet.
+// 4.18 / 4.69 (mean 79.8 %, 4.60). With the boxes moved onto their motion evidence (session 35): 84.85 / 76.85 /
+// 79.57 %, 4.05 / 4.18 / 4.11 (mean 80.4 %, 4.11; without it 80.3 %, 4.51, which fails the false-alarm bound).
+// Issue 18's target (>= 80 %, <= 1 false alarm) is not met yet.
 TEST(ChainLowSnrScenario, ThreeSeedsOfLowContrastHoldTheirCorrectRateAndFalseAlarms) {
   SeedFigures f;
   ASSERT_NO_FATAL_FAILURE(score_seeds_1_to_3("lowsnr", f));
   EXPECT_GE(f.correct, 0.785);
   EXPECT_GE(f.worst_correct, 0.76);
-  EXPECT_LE(f.false_alarms, 4.9);
+  EXPECT_LE(f.false_alarms, 4.4);
 }
 
 // `dense` (queues at junctions, cars creeping at 0.05-0.15 px/frame, under the speed floor of frames without 3-D
 // structure): with the creep rule (docs/motion.md, `creep_speed_factor`) seeds 1-3, 150 frames, went from 79.64 / 74.49
 // / 80.80 % correct, 4.90 / 2.90 / 3.35 false alarms per frame (mean 78.3 %, 3.72) to 85.11 / 78.18 / 84.88 %, 3.97 /
-// 3.09 / 3.31 (mean 82.7 %, 3.45). Issue 18's target (>= 80 % on every seed, <= 1 false alarm) is not met yet.
+// 3.09 / 3.31 (mean 82.7 %, 3.45). With the boxes moved onto their motion evidence (session 35): 85.06 / 78.59 /
+// 85.14 %, 3.53 / 2.67 / 2.96 (mean 82.9 %, 3.05; the false-alarm bound fails without it). Issue 18's target (>= 80 %
+// on every seed, <= 1 false alarm) is not met yet.
 TEST(ChainDenseScenario, ThreeSeedsOfQueuesHoldTheirCorrectRateAndFalseAlarms) {
   SeedFigures f;
   ASSERT_NO_FATAL_FAILURE(score_seeds_1_to_3("dense", f));
   EXPECT_GE(f.correct, 0.81);
   EXPECT_GE(f.worst_correct, 0.77);
-  EXPECT_LE(f.false_alarms, 3.8);
+  EXPECT_LE(f.false_alarms, 3.3);
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <optional>
 
 #include <opencv2/imgproc.hpp>
 
@@ -10,6 +11,7 @@
 #include "uavmot/segmentation/blob_regions.hpp"
 #include "feature_recentring.hpp"
 #include "method_gradients.hpp"
+#include "motion_evidence.hpp"
 #include "shift_check.hpp"
 
 namespace uavmot::segmentation {
@@ -278,24 +280,42 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
       if (pixels.channels() == 3) cv::cvtColor(pixels, gray, cv::COLOR_BGR2GRAY); else gray = pixels;
       ++stats_.windows;
       regions = segment_window(gray, window, c, feature_positions);
+      const ShiftSearch search{c.velocity, r.shift_check_search_px, r.shift_check_min_speed_px};
+      const bool compared = shift_check && std::hypot(c.velocity[0], c.velocity[1]) >= r.shift_check_min_speed_px;
+      std::optional<ImageCrop> current;
       if (r.shift_check_ratio > 0.0) {
-        ImageCrop current{window, gray.data == pixels.data ? gray.clone() : gray};  // kept past this frame
-        if (shift_check && std::hypot(c.velocity[0], c.velocity[1]) >= r.shift_check_min_speed_px) {
+        current = ImageCrop{window, gray.data == pixels.data ? gray.clone() : gray};  // kept past this frame
+        if (compared) {
           std::erase_if(regions, [&](const Region& region) {
-            const auto e = compare_shifts(current, region.box, {c.velocity, r.shift_check_search_px, r.shift_check_min_speed_px},
-                                          previous_from_current, previous_windows_);
+            const auto e = compare_shifts(*current, region.box, search, previous_from_current, previous_windows_);
             const bool is_static = e && e->moving_error >= r.shift_check_ratio * e->static_error;
             stats_.static_regions += is_static ? 1 : 0;
             return is_static;
           });
         }
-        windows.push_back(std::move(current));
       }
       for (Region& region : regions) {
         shadow_.observe(gray, window.tl(), region.box);  // the blob as found: its dark side is the shadow
+        if (compared && r.motion_evidence_margin_widths > 0.0) {
+          const double margin = r.motion_evidence_margin_widths * scene_.metres_to_px(scene_.vehicle_width_m);
+          const auto e = motion_evidence(*current, region.box, margin, search, previous_from_current, previous_windows_);
+          if (e && e->inside_fraction < r.motion_evidence_max_inside && std::abs(e->across_px) >= r.motion_evidence_min_offset_px) {
+            OrientedBox moved = region.box;
+            const double a = region.box.angle_deg * CV_PI / 180.0;
+            moved.cx -= e->across_px * std::sin(a);
+            moved.cy += e->across_px * std::cos(a);
+            // Only onto something that moves more plainly than what the region held: on noise (an
+            // interlaced clip's static slab) the evidence's centroid is noise too.
+            if (moves_more_plainly(*current, moved, region.box, search, previous_from_current, previous_windows_)) {
+              region.box = moved;
+              ++stats_.evidence_moves;
+            }
+          }
+        }
         region.box = recentred_on_features(region.box, features_within(region.box, r.support_margin_px, feature_positions),
                                            r.recentre_min_offset_fraction);
       }
+      if (current) windows.push_back(std::move(*current));
     } else {
       ++stats_.windows_without_pixels;
     }

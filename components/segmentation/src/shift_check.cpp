@@ -3,28 +3,11 @@
 #include <algorithm>
 #include <cmath>
 
+#include "previous_window.hpp"
+
 namespace uavmot::segmentation {
-namespace {
 
-// Bilinear grey value at `p` (pixel centres at integer coordinates); `p` must lie in the window
-// with a pixel to spare to the right and below (holds()).
-double sample(const ImageCrop& w, const cv::Point2d& p) {
-  const double x = p.x - w.roi.x, y = p.y - w.roi.y;
-  const int x0 = static_cast<int>(std::floor(x)), y0 = static_cast<int>(std::floor(y));
-  const double fx = x - x0, fy = y - y0;
-  const uint8_t* r0 = w.pixels.ptr<uint8_t>(y0);
-  const uint8_t* r1 = w.pixels.ptr<uint8_t>(y0 + 1);
-  return (1 - fy) * ((1 - fx) * r0[x0] + fx * r0[x0 + 1]) + fy * ((1 - fx) * r1[x0] + fx * r1[x0 + 1]);
-}
-
-bool holds(const ImageCrop& w, const cv::Point2d& p) {
-  return p.x >= w.roi.x && p.y >= w.roi.y && p.x < w.roi.x + w.roi.width - 1 && p.y < w.roi.y + w.roi.height - 1;
-}
-
-}  // namespace
-
-std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const OrientedBox& box, const ShiftSearch& search,
-                                          const Homography& previous_from_current, const std::vector<ImageCrop>& previous) {
+std::vector<cv::Point2d> shifts_to_try(const ShiftSearch& search) {
   const std::vector<double> steps =
       search.radius_px > 0.0 ? std::vector<double>{0.0, -search.radius_px, search.radius_px} : std::vector<double>{0.0};
   std::vector<cv::Point2d> shifts;
@@ -34,6 +17,12 @@ std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const Orient
       if (std::hypot(s.x, s.y) >= search.min_speed_px) shifts.push_back(s);
     }
   }
+  return shifts;
+}
+
+std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const OrientedBox& box, const ShiftSearch& search,
+                                          const Homography& previous_from_current, const std::vector<ImageCrop>& previous) {
+  const std::vector<cv::Point2d> shifts = shifts_to_try(search);
   const cv::Rect2d extent = axis_aligned_bounds(box);
   if (shifts.empty() || !(std::isfinite(extent.x) && std::isfinite(extent.y) && std::isfinite(extent.width) &&
                           std::isfinite(extent.height))) {
@@ -45,18 +34,8 @@ std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const Orient
   // cluster, usually; a region at the edge of a cluster's window, as static texture beside a car
   // often is, may be held only in part, as the window moved with the car).
   const cv::Point2d then = apply_homography(previous_from_current, cv::Point2d(bounds.x, bounds.y));
-  const cv::Point2d velocity(search.velocity[0], search.velocity[1]);
-  const cv::Rect2d rest_area(then, cv::Size2d(bounds.size())), moved_area(then - velocity, cv::Size2d(bounds.size()));
-  const ImageCrop* source = nullptr;
-  double most = 0.0;
-  for (const ImageCrop& w : previous) {
-    const cv::Rect2d roi(w.roi);
-    const double held = std::min((roi & rest_area).area(), (roi & moved_area).area());
-    if (held > most) {
-      most = held;
-      source = &w;
-    }
-  }
+  const ImageCrop* source = window_holding(previous, cv::Rect2d(then, cv::Size2d(bounds.size())),
+                                           cv::Point2d(search.velocity[0], search.velocity[1]));
   if (source == nullptr) return std::nullopt;
   // Over a region's few pixels the homography is affine to well below a thousandth of a pixel:
   // each shift moves the previous-frame position by the same amount, the Jacobian times the shift.
@@ -74,12 +53,12 @@ std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const Orient
       if (!frame.contains(p)) continue;
       ++inside;
       const cv::Point2d at_rest = apply_homography(previous_from_current, p);
-      bool held = holds(*source, at_rest);
-      for (size_t i = 0; i < offsets.size() && held; ++i) held = holds(*source, at_rest + offsets[i]);
+      bool held = window_holds(*source, at_rest);
+      for (size_t i = 0; i < offsets.size() && held; ++i) held = window_holds(*source, at_rest + offsets[i]);
       if (!held) continue;
       const double value = row[x - current.roi.x];
-      e.static_error += std::abs(value - sample(*source, at_rest));
-      for (size_t i = 0; i < offsets.size(); ++i) moved_error[i] += std::abs(value - sample(*source, at_rest + offsets[i]));
+      e.static_error += std::abs(value - sample_window(*source, at_rest));
+      for (size_t i = 0; i < offsets.size(); ++i) moved_error[i] += std::abs(value - sample_window(*source, at_rest + offsets[i]));
       ++e.pixels;
     }
   }
@@ -88,6 +67,16 @@ std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const Orient
   e.static_error /= e.pixels;
   e.moving_error = *std::min_element(moved_error.begin(), moved_error.end()) / e.pixels;
   return e;
+}
+
+bool moves_more_plainly(const ImageCrop& current, const OrientedBox& candidate, const OrientedBox& reference,
+                        const ShiftSearch& search, const Homography& previous_from_current,
+                        const std::vector<ImageCrop>& previous) {
+  const auto c = compare_shifts(current, candidate, search, previous_from_current, previous);
+  if (!c || !(c->static_error > 0.0)) return false;
+  const auto r = compare_shifts(current, reference, search, previous_from_current, previous);
+  if (!r || !(r->static_error > 0.0)) return true;
+  return c->moving_error / c->static_error < r->moving_error / r->static_error;
 }
 
 }  // namespace uavmot::segmentation

@@ -32,11 +32,22 @@ struct ShiftSearch {
   double min_speed_px = 0;  // shifts slower than this are not a moving hypothesis (they would explain static texture)
 };
 
+// The shifts a moving hypothesis tries: the velocity, and +-radius in x and y around it, each at
+// least min_speed_px long (row by row, the velocity itself first).
+std::vector<cv::Point2d> shifts_to_try(const ShiftSearch& search);
+
 // `current` (grey, CV_8UC1) holds the region: its window of the current frame; `previous` are grey
 // windows of the previous frame; `previous_from_current` maps current-frame to previous-frame
 // coordinates. Nothing when no shift is fast enough, no window of `previous` holds at least half
 // the region's pixels under every hypothesis, or the box holds no pixel of `current`.
 std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const OrientedBox& box, const ShiftSearch& search,
                                           const Homography& previous_from_current, const std::vector<ImageCrop>& previous);
+
+// Whether `candidate` matches the previous frame shifted (its best shift) better, relative to at
+// rest, than `reference` does: the ratio moving / static error of compare_shifts is lower. False
+// when `candidate` cannot be compared; true when only `reference` cannot.
+bool moves_more_plainly(const ImageCrop& current, const OrientedBox& candidate, const OrientedBox& reference,
+                        const ShiftSearch& search, const Homography& previous_from_current,
+                        const std::vector<ImageCrop>& previous);
 
 }  // namespace uavmot::segmentation

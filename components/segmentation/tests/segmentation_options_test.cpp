@@ -74,6 +74,25 @@ TEST(SegmentationOptions, ReadsTheShadowCorrection) {
   EXPECT_DOUBLE_EQ(load("{}").regions.shadow_correction_factor, 1.0);  // on by default
 }
 
+TEST(SegmentationOptions, ReadsAndBoundsTheMotionEvidence) {
+  const SegmentationOptions defaults = load("{}");
+  EXPECT_DOUBLE_EQ(defaults.regions.motion_evidence_margin_widths, 1.0);  // on by default
+  EXPECT_DOUBLE_EQ(defaults.regions.motion_evidence_max_inside, 0.6);
+  EXPECT_DOUBLE_EQ(defaults.regions.motion_evidence_min_offset_px, 0.5);
+  const SegmentationOptions o =
+      load("motion_evidence_margin_widths: 0\nmotion_evidence_max_inside: 0.4\nmotion_evidence_min_offset_px: 1\n");
+  EXPECT_DOUBLE_EQ(o.regions.motion_evidence_margin_widths, 0.0);
+  EXPECT_DOUBLE_EQ(o.regions.motion_evidence_max_inside, 0.4);
+  EXPECT_DOUBLE_EQ(o.regions.motion_evidence_min_offset_px, 1.0);
+  expect_error_mentions("motion_evidence_margin_widths: 6\n", "motion_evidence_margin_widths");
+  expect_error_mentions("motion_evidence_margin_widths: -1\n", "motion_evidence_margin_widths");
+  expect_error_mentions("motion_evidence_max_inside: 1.5\n", "motion_evidence_max_inside");
+  expect_error_mentions("motion_evidence_min_offset_px: .nan\n", "motion_evidence_min_offset_px");
+  SegmentationOptions bad;
+  bad.regions.motion_evidence_max_inside = -0.1;
+  EXPECT_THROW(validate(bad), InvalidArgument);
+}
+
 TEST(SegmentationOptions, ValidateRejectsOutOfDomainValues) {
   SegmentationOptions o;
   o.gradients.lbp_radii_px.clear();

@@ -17,38 +17,9 @@ namespace {
 
 using testing::features_on;
 using testing::textured_background;
-
-Homography translation(double dx, double dy) { return Homography(1, 0, dx, 0, 1, dy, 0, 0, 1); }
-
-// `image` shifted by (dx, dy): out(x) = image(x - d), bilinear.
-cv::Mat shifted(const cv::Mat& image, double dx, double dy) {
-  cv::Mat out;
-  cv::warpAffine(image, out, cv::Matx23d(1, 0, dx, 0, 1, dy), image.size(), cv::INTER_LINEAR, cv::BORDER_REFLECT);
-  return out;
-}
-
-// Two frames of a camera moving by (3, 2) px over textured ground, with a textured 15 x 6 px car
-// driving by `velocity` relative to the ground; the car's box in the current frame.
-struct TwoFrames {
-  cv::Mat previous, current;
-  OrientedBox car;
-};
-
-TwoFrames two_frames(cv::Vec2d velocity) {
-  const cv::Mat ground = textured_background(cv::Size(200, 160), 100.0, 40.0, 0.0, 7);
-  const cv::Mat paint = textured_background(cv::Size(200, 160), 150.0, 60.0, 0.0, 8);
-  const cv::Rect car_then(90, 70, 15, 6);
-  TwoFrames f;
-  f.previous = ground.clone();
-  paint(car_then).copyTo(f.previous(car_then));
-  f.current = shifted(f.previous, 3.0 + velocity[0], 3.0 + velocity[1]);  // the car, moved with camera and velocity
-  cv::Mat ground_now = shifted(ground, 3.0, 3.0);
-  cv::Mat car_mask = cv::Mat::zeros(ground.size(), CV_8U);
-  car_mask(car_then).setTo(255);
-  ground_now.copyTo(f.current, shifted(car_mask, 3.0 + velocity[0], 3.0 + velocity[1]) < 128);
-  f.car = {car_then.x + 7.0 + 3.0 + velocity[0], car_then.y + 2.5 + 3.0 + velocity[1], 4.0, 13.0, 0.0};  // inside the car
-  return f;
-}
+using testing::translation;
+using testing::two_frames;
+using testing::TwoFrames;
 
 TEST(ShiftCheck, AMovingCarMatchesShiftedAndTheGroundUnshifted) {
   for (const cv::Vec2d& velocity : {cv::Vec2d(1.0, 0.0), cv::Vec2d(0.0, -2.0), cv::Vec2d(0.4, 0.0)}) {
@@ -108,6 +79,27 @@ TEST(ShiftCheck, NothingWithoutThePreviousPixels) {
   outside.cx = 10.0;
   EXPECT_FALSE(compare_shifts(current, outside, {{1.0, 0.0}, 0.5, 0.3}, previous_from_current,
                               {{cv::Rect(0, 0, 200, 160), f.previous}}));
+}
+
+// The evidence step moves a region only onto something that moves more plainly than what it held.
+TEST(ShiftCheck, TheCarMovesMorePlainlyThanTheGroundBesideIt) {
+  const cv::Vec2d velocity(1.0, 0.0);
+  const TwoFrames f = two_frames(velocity);
+  const ImageCrop current{cv::Rect(60, 50, 80, 60), f.current(cv::Rect(60, 50, 80, 60))};
+  const std::vector<ImageCrop> previous{{cv::Rect(50, 40, 90, 70), f.previous(cv::Rect(50, 40, 90, 70))}};
+  const ShiftSearch search{velocity, 0.5, 0.3};
+  OrientedBox half_off = f.body;  // half on the car, half on the ground beside it
+  half_off.cy += 4.0;
+  OrientedBox ground = f.body;
+  ground.cy += 12.0;
+  const Homography previous_from_current = translation(-3.0, -3.0);
+  EXPECT_TRUE(moves_more_plainly(current, f.body, half_off, search, previous_from_current, previous));
+  EXPECT_TRUE(moves_more_plainly(current, half_off, ground, search, previous_from_current, previous));
+  EXPECT_FALSE(moves_more_plainly(current, ground, f.body, search, previous_from_current, previous));
+  OrientedBox outside = f.body;  // nothing to compare it by: never a better place
+  outside.cx = 10.0;
+  EXPECT_FALSE(moves_more_plainly(current, outside, ground, search, previous_from_current, previous));
+  EXPECT_TRUE(moves_more_plainly(current, f.body, outside, search, previous_from_current, previous));
 }
 
 // A car drives past a bright static bar (a lane marking); a feature beside the car, dragged

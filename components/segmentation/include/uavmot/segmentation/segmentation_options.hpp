@@ -99,6 +99,14 @@ struct RegionOptions {
   // side of its centre line is moved across onto them: the blob took in static texture beside the
   // vehicle, e.g. the lane marking along a road-grey car (docs/segmentation.md); 0 disables.
   double recentre_min_offset_fraction = 0.2;
+  // A region whose cluster the shift check tests is moved onto where its pixels move with the
+  // cluster: the centroid of that evidence over the region grown by this many vehicle widths, when
+  // less than motion_evidence_max_inside of it lies inside the region and the centroid lies at
+  // least motion_evidence_min_offset_px from the region's centre (a road-grey car's blob is its
+  // shadow and the marking beside it; docs/segmentation.md, "Motion evidence"); 0 disables.
+  double motion_evidence_margin_widths = 1.0;
+  double motion_evidence_max_inside = 0.6;
+  double motion_evidence_min_offset_px = 0.5;
   // Plausible region sizes, as multiples of the expected vehicle length / width.
   double min_length_factor = 0.4;
   double max_length_factor = 3.0;

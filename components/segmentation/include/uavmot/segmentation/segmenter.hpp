@@ -59,6 +59,7 @@ struct SegmentationStats {
   size_t fallback_regions = 0;        // feature boxes added where the gradients found nothing
   size_t duplicate_regions = 0;       // regions dropped as duplicates of an earlier one
   size_t static_regions = 0;          // regions dropped by the shift check (static texture)
+  size_t evidence_moves = 0;          // regions moved onto their motion evidence
   std::optional<cv::Vec2d> shadow_offset_px;  // the shadow offset the regions were corrected by, if any
 };
 

@@ -1,0 +1,101 @@
+#include "motion_evidence.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <opencv2/imgproc.hpp>
+
+#include "previous_window.hpp"
+
+namespace uavmot::segmentation {
+
+std::optional<MotionEvidence> motion_evidence(const ImageCrop& current, const OrientedBox& box, double margin_px,
+                                              const ShiftSearch& search, const Homography& previous_from_current,
+                                              const std::vector<ImageCrop>& previous) {
+  OrientedBox widened = box;
+  widened.width += 2.0 * margin_px;
+  const std::vector<cv::Point2d> shifts = shifts_to_try(search);
+  if (shifts.empty() || !is_finite(widened)) return std::nullopt;
+  const cv::Rect bounds = pixel_bounds(widened) & current.roi;
+  if (bounds.empty()) return std::nullopt;
+  const cv::Point2d then = apply_homography(previous_from_current, cv::Point2d(bounds.x, bounds.y));
+  const ImageCrop* source = window_holding(previous, cv::Rect2d(then, cv::Size2d(bounds.size())),
+                                           cv::Point2d(search.velocity[0], search.velocity[1]));
+  if (source == nullptr) return std::nullopt;
+  // As in the shift check: over a few pixels the homography is affine, so a shift moves the
+  // previous-frame position by the Jacobian times the shift.
+  const cv::Matx22d jacobian = homography_jacobian(previous_from_current, cv::Point2d(box.cx, box.cy));
+  std::vector<cv::Point2d> offsets;
+  for (const cv::Point2d& s : shifts) offsets.push_back(-(jacobian * cv::Vec2d(s.x, s.y)));
+
+  // Whether pixel p of the widened box is held by the previous window at rest and under every
+  // shift, and where it was at rest.
+  const BoxFrame frame(widened), own(box);
+  // The window is a rectangle: it holds every shifted position when it holds the extreme ones.
+  cv::Point2d lowest(0.0, 0.0), highest(0.0, 0.0);
+  for (const cv::Point2d& o : offsets) {
+    lowest = {std::min(lowest.x, o.x), std::min(lowest.y, o.y)};
+    highest = {std::max(highest.x, o.x), std::max(highest.y, o.y)};
+  }
+  auto held_at = [&](const cv::Point2d& p, cv::Point2d& rest) {
+    rest = apply_homography(previous_from_current, p);
+    return window_holds(*source, rest + lowest) && window_holds(*source, rest + highest);
+  };
+  auto grey_at = [&](int x, int y) { return static_cast<double>(current.pixels.at<uint8_t>(y - current.roi.y, x - current.roi.x)); };
+
+  // The shift that explains the changed pixels best, i.e. takes away most of the error at rest.
+  // Not the one with the least error overall: most of the widened box is static ground, which would
+  // pick the slowest shift allowed. Every other pixel each way tells the shifts apart well enough
+  // at a quarter of the cost.
+  std::vector<double> explained(shifts.size(), 0.0);
+  for (int y = bounds.y; y < bounds.br().y; y += 2) {
+    for (int x = bounds.x; x < bounds.br().x; x += 2) {
+      cv::Point2d rest;
+      if (!frame.contains(cv::Point2d(x, y)) || !held_at(cv::Point2d(x, y), rest)) continue;
+      const double value = grey_at(x, y), at_rest = std::abs(value - sample_window(*source, rest));
+      for (size_t k = 0; k < offsets.size(); ++k) {
+        explained[k] += std::max(0.0, at_rest - std::abs(value - sample_window(*source, rest + offsets[k])));
+      }
+    }
+  }
+  const auto best = static_cast<size_t>(std::max_element(explained.begin(), explained.end()) - explained.begin());
+
+  // Per pixel: the error at rest less the error under that shift; pixels outside the widened box
+  // or not held by the previous window stay at zero (no evidence either way).
+  cv::Mat1f evidence = cv::Mat1f::zeros(bounds.size());
+  cv::Mat1b counted = cv::Mat1b::zeros(bounds.size());
+  int inside = 0, held_pixels = 0;
+  for (int y = bounds.y; y < bounds.br().y; ++y) {
+    for (int x = bounds.x; x < bounds.br().x; ++x) {
+      const cv::Point2d p(x, y);
+      if (!frame.contains(p)) continue;
+      ++inside;
+      cv::Point2d rest;
+      if (!held_at(p, rest)) continue;
+      const double value = grey_at(x, y);
+      evidence(y - bounds.y, x - bounds.x) = static_cast<float>(std::abs(value - sample_window(*source, rest)) -
+                                                                std::abs(value - sample_window(*source, rest + offsets[best])));
+      counted(y - bounds.y, x - bounds.x) = 1;
+      ++held_pixels;
+    }
+  }
+  if (held_pixels == 0 || 2 * held_pixels < inside) return std::nullopt;
+  // A pixel's error is noisy; its neighbourhood's says whether the shift explains it.
+  cv::blur(evidence, evidence, cv::Size(3, 3), cv::Point(-1, -1), cv::BORDER_REPLICATE);
+  double weight = 0.0, inside_weight = 0.0, sum_across = 0.0;
+  const double angle = box.angle_deg * CV_PI / 180.0, across_sin = std::sin(angle), across_cos = std::cos(angle);
+  for (int j = 0; j < evidence.rows; ++j) {
+    for (int i = 0; i < evidence.cols; ++i) {
+      if (!counted(j, i) || !(evidence(j, i) > 0.0f)) continue;
+      const double w = evidence(j, i);
+      const cv::Point2d p(bounds.x + i, bounds.y + j);
+      weight += w;
+      if (own.contains(p)) inside_weight += w;
+      sum_across += w * (-(p.x - box.cx) * across_sin + (p.y - box.cy) * across_cos);
+    }
+  }
+  if (!(weight > 0.0)) return std::nullopt;
+  return MotionEvidence{sum_across / weight, inside_weight / weight};
+}
+
+}  // namespace uavmot::segmentation
