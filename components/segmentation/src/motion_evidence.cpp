@@ -14,19 +14,11 @@ std::optional<MotionEvidence> motion_evidence(const ImageCrop& current, const Or
                                               const std::vector<ImageCrop>& previous) {
   OrientedBox widened = box;
   widened.width += 2.0 * margin_px;
-  const std::vector<cv::Point2d> shifts = shifts_to_try(search);
-  if (shifts.empty() || !is_finite(widened)) return std::nullopt;
-  const cv::Rect bounds = pixel_bounds(widened) & current.roi;
-  if (bounds.empty()) return std::nullopt;
-  const cv::Point2d then = apply_homography(previous_from_current, cv::Point2d(bounds.x, bounds.y));
-  const ImageCrop* source = window_holding(previous, cv::Rect2d(then, cv::Size2d(bounds.size())),
-                                           cv::Point2d(search.velocity[0], search.velocity[1]));
-  if (source == nullptr) return std::nullopt;
-  // As in the shift check: over a few pixels the homography is affine, so a shift moves the
-  // previous-frame position by the Jacobian times the shift.
-  const cv::Matx22d jacobian = homography_jacobian(previous_from_current, cv::Point2d(box.cx, box.cy));
-  std::vector<cv::Point2d> offsets;
-  for (const cv::Point2d& s : shifts) offsets.push_back(-(jacobian * cv::Vec2d(s.x, s.y)));
+  const auto view = previous_frame_view(current, widened, search, previous_from_current, previous);
+  if (!view) return std::nullopt;
+  const cv::Rect& bounds = view->bounds;
+  const ImageCrop* source = view->source;
+  const std::vector<cv::Point2d>& offsets = view->offsets;
 
   // Whether pixel p of the widened box is held by the previous window at rest and under every
   // shift, and where it was at rest.
@@ -47,7 +39,7 @@ std::optional<MotionEvidence> motion_evidence(const ImageCrop& current, const Or
   // Not the one with the least error overall: most of the widened box is static ground, which would
   // pick the slowest shift allowed. Every other pixel each way tells the shifts apart well enough
   // at a quarter of the cost.
-  std::vector<double> explained(shifts.size(), 0.0);
+  std::vector<double> explained(offsets.size(), 0.0);
   for (int y = bounds.y; y < bounds.br().y; y += 2) {
     for (int x = bounds.x; x < bounds.br().x; x += 2) {
       cv::Point2d rest;

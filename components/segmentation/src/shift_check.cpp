@@ -20,32 +20,34 @@ std::vector<cv::Point2d> shifts_to_try(const ShiftSearch& search) {
   return shifts;
 }
 
+std::optional<PreviousFrameView> previous_frame_view(const ImageCrop& current, const OrientedBox& box, const ShiftSearch& search,
+                                                     const Homography& previous_from_current,
+                                                     const std::vector<ImageCrop>& previous) {
+  const std::vector<cv::Point2d> shifts = shifts_to_try(search);
+  if (shifts.empty() || !is_finite(box)) return std::nullopt;
+  PreviousFrameView view;
+  view.bounds = pixel_bounds(box) & current.roi;
+  if (view.bounds.empty()) return std::nullopt;
+  const cv::Point2d then = apply_homography(previous_from_current, cv::Point2d(view.bounds.x, view.bounds.y));
+  view.source = window_holding(previous, cv::Rect2d(then, cv::Size2d(view.bounds.size())),
+                               cv::Point2d(search.velocity[0], search.velocity[1]));
+  if (view.source == nullptr) return std::nullopt;
+  const cv::Matx22d jacobian = homography_jacobian(previous_from_current, cv::Point2d(box.cx, box.cy));
+  for (const cv::Point2d& s : shifts) view.offsets.push_back(-(jacobian * cv::Vec2d(s.x, s.y)));
+  return view;
+}
+
 std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const OrientedBox& box, const ShiftSearch& search,
                                           const Homography& previous_from_current, const std::vector<ImageCrop>& previous) {
-  const std::vector<cv::Point2d> shifts = shifts_to_try(search);
-  const cv::Rect2d extent = axis_aligned_bounds(box);
-  if (shifts.empty() || !(std::isfinite(extent.x) && std::isfinite(extent.y) && std::isfinite(extent.width) &&
-                          std::isfinite(extent.height))) {
-    return std::nullopt;
-  }
-  const cv::Rect bounds = pixel_bounds(box) & current.roi;
-  if (bounds.empty()) return std::nullopt;
-  // The previous window that holds most of the region at rest and moved (the window of the same
-  // cluster, usually; a region at the edge of a cluster's window, as static texture beside a car
-  // often is, may be held only in part, as the window moved with the car).
-  const cv::Point2d then = apply_homography(previous_from_current, cv::Point2d(bounds.x, bounds.y));
-  const ImageCrop* source = window_holding(previous, cv::Rect2d(then, cv::Size2d(bounds.size())),
-                                           cv::Point2d(search.velocity[0], search.velocity[1]));
-  if (source == nullptr) return std::nullopt;
-  // Over a region's few pixels the homography is affine to well below a thousandth of a pixel:
-  // each shift moves the previous-frame position by the same amount, the Jacobian times the shift.
-  const cv::Matx22d jacobian = homography_jacobian(previous_from_current, cv::Point2d(box.cx, box.cy));
-  std::vector<cv::Point2d> offsets;
-  for (const cv::Point2d& s : shifts) offsets.push_back(-(jacobian * cv::Vec2d(s.x, s.y)));
+  const auto view = previous_frame_view(current, box, search, previous_from_current, previous);
+  if (!view) return std::nullopt;
+  const cv::Rect& bounds = view->bounds;
+  const ImageCrop* source = view->source;
+  const std::vector<cv::Point2d>& offsets = view->offsets;
   const BoxFrame frame(box);
   int inside = 0;
   ShiftErrors e;
-  std::vector<double> moved_error(shifts.size(), 0.0);
+  std::vector<double> moved_error(offsets.size(), 0.0);
   for (int y = bounds.y; y < bounds.br().y; ++y) {
     const uint8_t* row = current.pixels.ptr<uint8_t>(y - current.roi.y);
     for (int x = bounds.x; x < bounds.br().x; ++x) {

@@ -36,6 +36,23 @@ struct ShiftSearch {
 // least min_speed_px long (row by row, the velocity itself first).
 std::vector<cv::Point2d> shifts_to_try(const ShiftSearch& search);
 
+// What comparing a box with the previous frame needs: the box's pixel bounds within `current`, the
+// previous window that holds most of them both at rest and moved back by the search velocity (the
+// window of the same cluster, usually; a region at the edge of a cluster's window, as static
+// texture beside a car often is, may be held only in part, as the window moved with the car), and
+// where each shift of shifts_to_try moves a previous-frame position: over a region's few pixels the
+// homography is affine to well below a thousandth of a pixel, so by the Jacobian at the box's centre
+// times the shift. Nothing when no shift is fast enough, the box is not finite, it holds no pixel of
+// `current`, or no previous window holds any of it.
+struct PreviousFrameView {
+  cv::Rect bounds;
+  const ImageCrop* source = nullptr;
+  std::vector<cv::Point2d> offsets;
+};
+std::optional<PreviousFrameView> previous_frame_view(const ImageCrop& current, const OrientedBox& box, const ShiftSearch& search,
+                                                     const Homography& previous_from_current,
+                                                     const std::vector<ImageCrop>& previous);
+
 // `current` (grey, CV_8UC1) holds the region: its window of the current frame; `previous` are grey
 // windows of the previous frame; `previous_from_current` maps current-frame to previous-frame
 // coordinates. Nothing when no shift is fast enough, no window of `previous` holds at least half
