@@ -23,15 +23,9 @@ std::optional<MotionEvidence> motion_evidence(const ImageCrop& current, const Or
   // Whether pixel p of the widened box is held by the previous window at rest and under every
   // shift, and where it was at rest.
   const BoxFrame frame(widened), own(box);
-  // The window is a rectangle: it holds every shifted position when it holds the extreme ones.
-  cv::Point2d lowest(0.0, 0.0), highest(0.0, 0.0);
-  for (const cv::Point2d& o : offsets) {
-    lowest = {std::min(lowest.x, o.x), std::min(lowest.y, o.y)};
-    highest = {std::max(highest.x, o.x), std::max(highest.y, o.y)};
-  }
   auto held_at = [&](const cv::Point2d& p, cv::Point2d& rest) {
     rest = apply_homography(previous_from_current, p);
-    return window_holds(*source, rest + lowest) && window_holds(*source, rest + highest);
+    return view->holds_every_shift(rest);
   };
   auto grey_at = [&](int x, int y) { return static_cast<double>(current.pixels.at<uint8_t>(y - current.roi.y, x - current.roi.x)); };
 

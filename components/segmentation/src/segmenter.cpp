@@ -252,6 +252,7 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
   const Homography previous_from_current = shift_check ? motion.homography.inv() : Homography::eye();
   std::vector<ImageCrop> windows;
   shadow_.reset();  // this frame's regions vote
+  const double evidence_margin_px = r.motion_evidence_margin_widths * scene_.metres_to_px(scene_.vehicle_width_m);
 
   std::vector<Region> candidates;
   for (const auto& c : result.clusters) {
@@ -282,31 +283,40 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
       regions = segment_window(gray, window, c, feature_positions);
       const ShiftSearch search{c.velocity, r.shift_check_search_px, r.shift_check_min_speed_px};
       const bool compared = shift_check && std::hypot(c.velocity[0], c.velocity[1]) >= r.shift_check_min_speed_px;
+      // `compared` implies shift_check_ratio > 0, so `current` is there whenever it is used.
       std::optional<ImageCrop> current;
+      std::vector<std::optional<ShiftErrors>> checked(regions.size());  // each kept region's shift check
       if (r.shift_check_ratio > 0.0) {
         current = ImageCrop{window, gray.data == pixels.data ? gray.clone() : gray};  // kept past this frame
         if (compared) {
-          std::erase_if(regions, [&](const Region& region) {
+          std::vector<Region> moving;
+          checked.clear();
+          for (Region& region : regions) {
             const auto e = compare_shifts(*current, region.box, search, previous_from_current, previous_windows_);
-            const bool is_static = e && e->moving_error >= r.shift_check_ratio * e->static_error;
-            stats_.static_regions += is_static ? 1 : 0;
-            return is_static;
-          });
+            if (e && e->moving_error >= r.shift_check_ratio * e->static_error) {
+              ++stats_.static_regions;
+              continue;
+            }
+            moving.push_back(std::move(region));
+            checked.push_back(e);
+          }
+          regions = std::move(moving);
         }
       }
-      for (Region& region : regions) {
+      for (size_t i = 0; i < regions.size(); ++i) {
+        Region& region = regions[i];
         shadow_.observe(gray, window.tl(), region.box);  // the blob as found: its dark side is the shadow
-        if (compared && r.motion_evidence_margin_widths > 0.0) {
-          const double margin = r.motion_evidence_margin_widths * scene_.metres_to_px(scene_.vehicle_width_m);
-          const auto e = motion_evidence(*current, region.box, margin, search, previous_from_current, previous_windows_);
+        if (compared && evidence_margin_px > 0.0) {
+          const auto e = motion_evidence(*current, region.box, evidence_margin_px, search, previous_from_current, previous_windows_);
           if (e && e->inside_fraction < r.motion_evidence_max_inside && std::abs(e->across_px) >= r.motion_evidence_min_offset_px) {
             OrientedBox moved = region.box;
             const double a = region.box.angle_deg * CV_PI / 180.0;
             moved.cx -= e->across_px * std::sin(a);
             moved.cy += e->across_px * std::cos(a);
-            // Only onto something that moves more plainly than what the region held: on noise (an
-            // interlaced clip's static slab) the evidence's centroid is noise too.
-            if (moves_more_plainly(*current, moved, region.box, search, previous_from_current, previous_windows_)) {
+            // Only onto something that moves more plainly than what the region held (its shift check
+            // above, on the same box): on noise (an interlaced clip's static slab) the evidence's
+            // centroid is noise too.
+            if (moves_more_plainly(*current, moved, checked[i], search, previous_from_current, previous_windows_)) {
               region.box = moved;
               ++stats_.evidence_moves;
             }

@@ -33,8 +33,19 @@ std::optional<PreviousFrameView> previous_frame_view(const ImageCrop& current, c
                                cv::Point2d(search.velocity[0], search.velocity[1]));
   if (view.source == nullptr) return std::nullopt;
   const cv::Matx22d jacobian = homography_jacobian(previous_from_current, cv::Point2d(box.cx, box.cy));
-  for (const cv::Point2d& s : shifts) view.offsets.push_back(-(jacobian * cv::Vec2d(s.x, s.y)));
+  for (const cv::Point2d& s : shifts) {
+    const cv::Point2d o = -(jacobian * cv::Vec2d(s.x, s.y));
+    view.offsets.push_back(o);
+    view.lowest = {std::min(view.lowest.x, o.x), std::min(view.lowest.y, o.y)};
+    view.highest = {std::max(view.highest.x, o.x), std::max(view.highest.y, o.y)};
+  }
   return view;
+}
+
+// Exact, not an approximation: adding a larger offset never gives a smaller sum in floating point,
+// and the window's test is one interval in x and one in y.
+bool PreviousFrameView::holds_every_shift(const cv::Point2d& rest) const {
+  return window_holds(*source, rest + lowest) && window_holds(*source, rest + highest);
 }
 
 std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const OrientedBox& box, const ShiftSearch& search,
@@ -55,9 +66,7 @@ std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const Orient
       if (!frame.contains(p)) continue;
       ++inside;
       const cv::Point2d at_rest = apply_homography(previous_from_current, p);
-      bool held = window_holds(*source, at_rest);
-      for (size_t i = 0; i < offsets.size() && held; ++i) held = window_holds(*source, at_rest + offsets[i]);
-      if (!held) continue;
+      if (!view->holds_every_shift(at_rest)) continue;
       const double value = row[x - current.roi.x];
       e.static_error += std::abs(value - sample_window(*source, at_rest));
       for (size_t i = 0; i < offsets.size(); ++i) moved_error[i] += std::abs(value - sample_window(*source, at_rest + offsets[i]));
@@ -71,14 +80,13 @@ std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const Orient
   return e;
 }
 
-bool moves_more_plainly(const ImageCrop& current, const OrientedBox& candidate, const OrientedBox& reference,
+bool moves_more_plainly(const ImageCrop& current, const OrientedBox& candidate, const std::optional<ShiftErrors>& reference,
                         const ShiftSearch& search, const Homography& previous_from_current,
                         const std::vector<ImageCrop>& previous) {
   const auto c = compare_shifts(current, candidate, search, previous_from_current, previous);
   if (!c || !(c->static_error > 0.0)) return false;
-  const auto r = compare_shifts(current, reference, search, previous_from_current, previous);
-  if (!r || !(r->static_error > 0.0)) return true;
-  return c->moving_error / c->static_error < r->moving_error / r->static_error;
+  if (!reference || !(reference->static_error > 0.0)) return true;
+  return c->moving_error / c->static_error < reference->moving_error / reference->static_error;
 }
 
 }  // namespace uavmot::segmentation

@@ -48,6 +48,11 @@ struct PreviousFrameView {
   cv::Rect bounds;
   const ImageCrop* source = nullptr;
   std::vector<cv::Point2d> offsets;
+  cv::Point2d lowest, highest;  // the smallest and largest offset each way, the zero one included
+
+  // Whether the source window holds `rest` (a previous-frame position) at rest and under every
+  // shift. The window is a rectangle, so it holds them all when it holds the extreme ones.
+  bool holds_every_shift(const cv::Point2d& rest) const;
 };
 std::optional<PreviousFrameView> previous_frame_view(const ImageCrop& current, const OrientedBox& box, const ShiftSearch& search,
                                                      const Homography& previous_from_current,
@@ -61,9 +66,9 @@ std::optional<ShiftErrors> compare_shifts(const ImageCrop& current, const Orient
                                           const Homography& previous_from_current, const std::vector<ImageCrop>& previous);
 
 // Whether `candidate` matches the previous frame shifted (its best shift) better, relative to at
-// rest, than `reference` does: the ratio moving / static error of compare_shifts is lower. False
-// when `candidate` cannot be compared; true when only `reference` cannot.
-bool moves_more_plainly(const ImageCrop& current, const OrientedBox& candidate, const OrientedBox& reference,
+// rest, than a box whose compare_shifts gave `reference`: the ratio moving / static error is lower.
+// False when `candidate` cannot be compared; true when only the reference could not be.
+bool moves_more_plainly(const ImageCrop& current, const OrientedBox& candidate, const std::optional<ShiftErrors>& reference,
                         const ShiftSearch& search, const Homography& previous_from_current,
                         const std::vector<ImageCrop>& previous);
 

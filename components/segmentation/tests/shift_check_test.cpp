@@ -93,13 +93,16 @@ TEST(ShiftCheck, TheCarMovesMorePlainlyThanTheGroundBesideIt) {
   OrientedBox ground = f.body;
   ground.cy += 12.0;
   const Homography previous_from_current = translation(-3.0, -3.0);
-  EXPECT_TRUE(moves_more_plainly(current, f.body, half_off, search, previous_from_current, previous));
-  EXPECT_TRUE(moves_more_plainly(current, half_off, ground, search, previous_from_current, previous));
-  EXPECT_FALSE(moves_more_plainly(current, ground, f.body, search, previous_from_current, previous));
+  // The reference is the shift check's own result on the box the region had.
+  const auto checked = [&](const OrientedBox& box) { return compare_shifts(current, box, search, previous_from_current, previous); };
+  EXPECT_TRUE(moves_more_plainly(current, f.body, checked(half_off), search, previous_from_current, previous));
+  EXPECT_TRUE(moves_more_plainly(current, half_off, checked(ground), search, previous_from_current, previous));
+  EXPECT_FALSE(moves_more_plainly(current, ground, checked(f.body), search, previous_from_current, previous));
   OrientedBox outside = f.body;  // nothing to compare it by: never a better place
   outside.cx = 10.0;
-  EXPECT_FALSE(moves_more_plainly(current, outside, ground, search, previous_from_current, previous));
-  EXPECT_TRUE(moves_more_plainly(current, f.body, outside, search, previous_from_current, previous));
+  ASSERT_FALSE(checked(outside).has_value());
+  EXPECT_FALSE(moves_more_plainly(current, outside, checked(ground), search, previous_from_current, previous));
+  EXPECT_TRUE(moves_more_plainly(current, f.body, checked(outside), search, previous_from_current, previous));
 }
 
 // A car drives past a bright static bar (a lane marking); a feature beside the car, dragged
