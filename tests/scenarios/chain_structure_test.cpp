@@ -13,6 +13,9 @@
 // With the structure-edge step (corners on roof and crown silhouettes do not start moving,
 // 2026-11-27, 0216717): urban3d seed 100 2.87 / 51.76, seed 101 3.12 / 38.16, oblique seed 100
 // 3.56 / 62.78 per frame; correct 85.25 / 86.65, 87.58 / 87.93 and 60.69 / 62.67 %.
+// With the structure-patch step (a feature whose pixels static structure explains as well as its own
+// track does not move, session 36): urban3d seed 100 0.55 / 24.78, seed 101 0.49 / 24.93, oblique
+// seed 100 0.88 / 38.36 per frame; correct 86.34 / 87.05, 88.15 / 89.75 and 63.57 / 67.18 %.
 // Issue 17's target (<= 0.1 per frame on structure) is not met yet; docs/motion.md says what is left.
 
 #include <gtest/gtest.h>
@@ -73,6 +76,8 @@ TEST(ChainStructureScenario, ParallaxStepKeepsStructureOffTheTracksAndVehiclesOn
   // Session 35's boxes moved onto their motion evidence (docs/segmentation.md) helped the chain without the step more on
   // urban3d seed 101: 87.58 / 89.46 % (default / no parallax step) -> 87.43 / 89.75 %, a loss of 1.88 -> 2.32 points,
   // hence 3 there; held-out urban3d seeds 100-104 with the default gained 0.91 points (docs/tracking.md, session 35).
+  // The structure-patch step (session 36) costs vehicles too: oblique seed 100 3.61 points (bound 4), urban3d seed 101
+  // 1.60, seed 100 0.71; held-out seeds 100-109 at 250 frames lost 1.32 (urban3d) and 2.49 (oblique) points.
   for (const Case c : {Case{"urban3d", 100, 0.84, 0.02}, Case{"urban3d", 101, 0.85, 0.03}, Case{"oblique", 100, 0.58, 0.04}}) {
     const std::string name = std::string(c.preset) + "-" + std::to_string(c.seed);
     const std::string seq = dir + "/" + name;
@@ -83,8 +88,8 @@ TEST(ChainStructureScenario, ParallaxStepKeepsStructureOffTheTracksAndVehiclesOn
     const Score without = score(seq, seq + "-out-no-parallax", no_parallax);
     std::printf("%s: correct %.2f / %.2f %%, on structure %.2f / %.2f per frame (default / no parallax step)\n", name.c_str(),
                 100 * with.correct, 100 * without.correct, with.on_structure_per_frame, without.on_structure_per_frame);
-    EXPECT_LE(with.on_structure_per_frame, 8.0) << name;
-    EXPECT_LE(with.on_structure_per_frame, 0.15 * without.on_structure_per_frame) << name;
+    EXPECT_LE(with.on_structure_per_frame, 1.2) << name;  // 2.9-3.6 without the structure-patch step
+    EXPECT_LE(with.on_structure_per_frame, 0.05 * without.on_structure_per_frame) << name;
     EXPECT_GE(with.correct, c.min_correct) << name;
     EXPECT_GE(with.correct, without.correct - c.max_loss) << name;
   }

@@ -25,6 +25,7 @@
 #include "parallax_filter.hpp"
 #include "relative_velocity.hpp"
 #include "structure_edges.hpp"
+#include "structure_patch.hpp"
 #include "uavmot/core/checksum.hpp"
 #include "uavmot/core/state_codec.hpp"
 
@@ -330,10 +331,24 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   // the false alarms), nor in one with 3-D structure, whose silhouettes slide (urban3d, oblique).
   if (response_scale_ < 1.0 || structure_found) decision_options.strong_motion_factor = 0.0;
   const double faded_corner_threshold = o.faded_corner_ratio * o.min_corner_response * response_scale_;
+  const Homography current_to_previous = h.inv();
+  // No feature slower than this can be significant: the patch test spends its time on the rest.
+  const double candidate_speed = o.release_ratio * std::max(decision_options.min_moving_speed_px, floor_px);
   for (size_t k = 0; k < survivors.size(); ++k) {
     const LiveFeature& f = survivors[k];
     // A corner on a roof's or crown's silhouette slides off its epipolar line: it does not start moving.
     if (f.velocity.available) decided[k].velocity = edges.decided_velocity(parallax_sample(f, h), decided[k].velocity, f.classifier.moving());
+    // Pixels that static structure explains as well as the track does (structure_patch.hpp) do not
+    // move this frame; a moving feature stops after confirm_frames such frames.
+    ParallaxFilter::StructureMotion structure;
+    if (o.structure_patch_ratio > 0.0 && f.velocity.available &&
+        std::hypot(decided[k].velocity[0], decided[k].velocity[1]) >= candidate_speed &&
+        parallax_.structure_motion(parallax_sample(f, h), structure) &&
+        structure_explains_patch(structure_patch_errors(previous_.levels[0], current.levels[0], survivors_from[k], f.position,
+                                                        current_to_previous, structure, o.structure_patch_radius_px),
+                                 o)) {
+      decided[k].velocity = cv::Vec2d(0.0, 0.0);
+    }
     // In a low-contrast frame a corner far below the threshold (noise on a weak corner, an edge it
     // slides along) cannot place itself to the precision the test needs: it does not start moving.
     if (response_scale_ < 1.0 && !f.classifier.moving() && f.corner_strength < faded_corner_threshold) {
@@ -367,7 +382,6 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
                                    floor_px);
   }
   if (o.dragged_ratio > 0.0) {
-    const Homography current_to_previous = h.inv();
     std::vector<LiveFeature> kept;
     kept.reserve(survivors.size());
     for (size_t k = 0; k < survivors.size(); ++k) {

@@ -259,21 +259,29 @@ const ParallaxModel& ParallaxFilter::fit(const std::vector<ParallaxSample>& samp
   return model_;
 }
 
+bool ParallaxFilter::structure_motion(const ParallaxSample& sample, StructureMotion& out) const {
+  if (!model_.valid && !model_.provisional) return false;
+  out.direction = epipolar_direction(model_.epipole, sample.position);
+  if (model_.side != 0) out.direction *= static_cast<double>(model_.side);
+  out.both_ways = model_.side == 0;
+  const double geometric_cap = parallax_cap(sample, options_);
+  out.cap_px = model_.cap_px > 0.0 ? std::min(model_.cap_px, geometric_cap) : geometric_cap;
+  return true;
+}
+
 cv::Vec2d ParallaxFilter::independent_velocity(const ParallaxSample& sample) const {
-  if (!model_.valid && !model_.provisional) return sample.velocity;
-  cv::Vec2d u = epipolar_direction(model_.epipole, sample.position);
-  if (model_.side != 0) u *= static_cast<double>(model_.side);
+  StructureMotion structure;
+  if (!structure_motion(sample, structure)) return sample.velocity;
+  cv::Vec2d u = structure.direction;
   double along = sample.velocity.dot(u);
-  if (model_.side == 0 && along < 0.0) {  // structure on both sides: either way along the line
+  if (structure.both_ways && along < 0.0) {  // structure on both sides: either way along the line
     u = -u;
     along = -along;
   }
   // The wrong side of the line, or beyond the cap (no structure of this scene moves so fast): the
   // whole velocity is the point's own. Up to the cap, motion along the line is what a static point
   // of some height does.
-  const double geometric_cap = parallax_cap(sample, options_);
-  const double cap = model_.cap_px > 0.0 ? std::min(model_.cap_px, geometric_cap) : geometric_cap;
-  if (!(along > 0.0) || along > cap) return sample.velocity;
+  if (!(along > 0.0) || along > structure.cap_px) return sample.velocity;
   return sample.velocity - along * u;
 }
 

@@ -65,6 +65,16 @@ class ParallaxFilter {
   // itself when the model is neither valid nor provisional).
   cv::Vec2d independent_velocity(const ParallaxSample& sample) const;
 
+  // How static structure can move at `sample` under the model: along `direction` (and against it
+  // too when `both_ways`) by up to `cap_px` per frame, the bound independent_velocity() explains.
+  // False when the model is neither valid nor provisional.
+  struct StructureMotion {
+    cv::Vec2d direction{0, 0};
+    double cap_px = 0.0;
+    bool both_ways = false;
+  };
+  bool structure_motion(const ParallaxSample& sample, StructureMotion& out) const;
+
   const ParallaxModel& model() const { return model_; }
   // Where the last fit found structure: the positions of its supporters (empty unless valid or provisional).
   const std::vector<cv::Point2f>& supporters() const { return supporters_; }

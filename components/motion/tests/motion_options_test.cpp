@@ -52,6 +52,10 @@ TEST(MotionOptions, RejectsBadValuesNamingTheKey) {
   expect_error("parallax_edge_radius_px: -1\n", "parallax_edge_radius_px");
   expect_error("parallax_edge_min_supporters: 0\n", "parallax_edge_min_supporters");
   expect_error("parallax_edge_speed_factor: -0.5\n", "parallax_edge_speed_factor");
+  expect_error("structure_patch_ratio: -1\n", "structure_patch_ratio");
+  expect_error("structure_patch_ratio: .nan\n", "structure_patch_ratio");
+  expect_error("structure_patch_radius_px: 0\n", "structure_patch_radius_px");
+  expect_error("structure_patch_radius_px: 9\n", "structure_patch_radius_px");
 }
 
 // The options' keys, in the order of for_each_motion_option.

@@ -155,6 +155,12 @@ struct MotionOptions {
   double parallax_edge_radius_px = 24.0;
   int parallax_edge_min_supporters = 3;
   double parallax_edge_speed_factor = 1.5;
+  // A candidate's own pixels, where the epipole is trusted: it does not move this frame when every
+  // pixel of its patch is explained about as well by static structure (the previous frame shifted
+  // along the epipolar line, 0 to the cap) as by its own track, i.e. the structure's per-pixel
+  // error is below structure_patch_ratio x the track's (structure_patch.hpp; 0 = off).
+  double structure_patch_ratio = 1.0;
+  int structure_patch_radius_px = 3;  // the patch is (2 r + 1)^2 pixels
 };
 
 // The limits of one option in the configuration file.
@@ -259,6 +265,8 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("parallax_edge_radius_px", o.parallax_edge_radius_px, Range<double>{0.0, 1000.0});
   visit("parallax_edge_min_supporters", o.parallax_edge_min_supporters, Range<int>{1, 100000});
   visit("parallax_edge_speed_factor", o.parallax_edge_speed_factor, Range<double>{0.0, 100.0});
+  visit("structure_patch_ratio", o.structure_patch_ratio, Range<double>{0.0, 100.0});
+  visit("structure_patch_radius_px", o.structure_patch_radius_px, Range<int>{1, 8});
 }
 
 // Reads a `motion:` section; absent keys keep their defaults. Throws uavmot::InputError naming
