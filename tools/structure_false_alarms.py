@@ -10,7 +10,7 @@ structure, lies in the convex hull of the structure's outline in that frame (gt/
 --vehicle-boxes (default 3) boxes on a moving vehicle first (a vehicle hidden by a building or a
 crown, whose track stayed on the structure); and the tracks with most such boxes.
 
-    python3 tools/structure_false_alarms.py SEQUENCE_DIR RESULT_DIR [--early-frame N] [--top K]
+    python3 tools/structure_false_alarms.py SEQUENCE_DIR RESULT_DIR [--early-frame N] [--top K] [--vehicle-boxes N]
 """
 import argparse
 import collections
