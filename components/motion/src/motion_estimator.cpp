@@ -105,6 +105,7 @@ class MotionEstimator::Impl {
   std::vector<uint8_t> save_state() const;
   void restore_state(const std::vector<uint8_t>& bytes);
   int64_t last_frame_index() const { return last_frame_index_; }
+  const MotionStats& stats() const { return stats_; }
 
  private:
   // Tracks the live features into `current`; returns whether the frame pair gave a valid
@@ -117,6 +118,7 @@ class MotionEstimator::Impl {
   SceneInfo scene_;
   GridCornerDetector detector_;
   ParallaxFilter parallax_;
+  MotionStats stats_;
   Pyramid previous_;
   Pyramid spare_;  // buffers for the next frame's pyramid
   mutable std::mutex recycled_mutex_;
@@ -324,6 +326,8 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   // The pixel floor guards mostly against parallax: a frame where no structure was found uses a
   // lower one (flat_scene_speed_factor), vehicles creeping in queues are above it.
   const bool structure_found = parallax_.model().valid || parallax_.model().provisional;
+  ++stats_.decided_frames;
+  if (structure_found) ++stats_.structure_frames;
   MotionOptions decision_options = o;
   if (!structure_found) decision_options.min_moving_speed_px = flat_scene_min_speed_px_;
   // One frame's velocity decides (MotionOptions::strong_motion_factor) only where it can be trusted:
@@ -348,6 +352,7 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
                                                         current_to_previous, structure, o.structure_patch_radius_px),
                                  o)) {
       decided[k].velocity = cv::Vec2d(0.0, 0.0);
+      ++stats_.structure_patch_holds;
     }
     // In a low-contrast frame a corner far below the threshold (noise on a weak corner, an edge it
     // slides along) cannot place itself to the precision the test needs: it does not start moving.
@@ -678,5 +683,6 @@ std::vector<uint8_t> MotionEstimator::save_state() const { return impl_->save_st
 void MotionEstimator::restore_state(const std::vector<uint8_t>& bytes) { impl_->restore_state(bytes); }
 int64_t MotionEstimator::last_frame_index() const { return impl_->last_frame_index(); }
 const MotionOptions& MotionEstimator::options() const { return impl_->options(); }
+const MotionStats& MotionEstimator::stats() const { return impl_->stats(); }
 
 }  // namespace uavmot::motion

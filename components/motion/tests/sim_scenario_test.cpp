@@ -13,6 +13,7 @@ namespace uavmot::motion {
 namespace {
 
 struct ScenarioScore {
+  MotionStats stats;                   // the estimator's own counts over the run
   std::vector<double> transfer_error;  // per valid frame pair
   int pairs = 0, valid = 0;
   int on_moving = 0, on_moving_classified = 0;  // objects moving >= 0.3 px/frame, features old enough
@@ -116,6 +117,7 @@ ScenarioScore run_preset(const std::string& preset, int frames, double recall_sp
       }
     }
   }
+  s.stats = estimator.stats();
   std::printf(
       "%s: %d/%d valid, mean transfer error %.4f px; moving features precision %.3f (%d/%d) recall (>= %.1f "
       "px/frame) %.3f (%d/%d), mean velocity error %.3f px/frame; parked %d/%d moving; background %d/%d "
@@ -142,6 +144,22 @@ TEST(SimScenario, Paper) {
   EXPECT_EQ(s.valid, s.pairs);
   EXPECT_LE(s.mean_error(), 0.1);
   expect_classification(s);
+  // A flat world: the parallax steps find no structure and hold nothing.
+  EXPECT_GE(s.stats.decided_frames, 70);
+  EXPECT_EQ(s.stats.structure_frames, 0);
+  EXPECT_EQ(s.stats.structure_patch_holds, 0);
+}
+
+TEST(SimScenario, TownWithBuildingsShowsStructureAndItsPixelsHoldFeatures) {
+  // `urban3d`: roofs of 5-30 m under a camera at 300 m. The parallax fit finds the structure in most
+  // frames and the structure-patch step holds silhouette corners and rooftop units still.
+  const ScenarioScore s = run_preset("urban3d", 40);
+  std::printf("urban3d: structure found in %lld of %lld frames, %lld feature-frames held by their pixels\n",
+              static_cast<long long>(s.stats.structure_frames), static_cast<long long>(s.stats.decided_frames),
+              static_cast<long long>(s.stats.structure_patch_holds));
+  EXPECT_EQ(s.valid, s.pairs);
+  EXPECT_GE(s.stats.structure_frames, s.stats.decided_frames / 2) << s.stats.decided_frames << " frames decided";
+  EXPECT_GT(s.stats.structure_patch_holds, 0);
 }
 
 TEST(SimScenario, Fastcam) {

@@ -65,6 +65,8 @@ ChainOutput Chain::segment_and_track(const Frame& frame, MotionEstimate motion) 
   return out;
 }
 
+const motion::MotionStats& Chain::motion_stats() const { return layers_->motion.stats(); }
+
 ShadowSummary Chain::shadow_summary() const {
   ShadowSummary summary;
   summary.frames = shadow_frames_;

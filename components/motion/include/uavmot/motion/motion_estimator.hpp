@@ -32,6 +32,16 @@ class PreparedFrame {
   std::unique_ptr<Data> data_;
 };
 
+// What an estimator did since it was made (diagnostics for logs; not part of the saved state and
+// not cleared by reset()): the frames whose feature velocities were decided, those of them in which
+// the parallax fit found 3-D structure (its epipole trusted or provisional), and the feature-frames
+// that the structure-patch step held still (docs/motion.md).
+struct MotionStats {
+  int64_t decided_frames = 0;
+  int64_t structure_frames = 0;
+  int64_t structure_patch_holds = 0;
+};
+
 class MotionEstimator {
  public:
   // Throws uavmot::InputError for inconsistent options.
@@ -71,6 +81,7 @@ class MotionEstimator {
   int64_t last_frame_index() const;
 
   const MotionOptions& options() const;
+  const MotionStats& stats() const;
 
  private:
   class Impl;

@@ -72,6 +72,7 @@ class Chain {
   // Read after the threads calling the halves have finished.
   const StageTimes& stage_times() const { return times_; }
   ShadowSummary shadow_summary() const;
+  const motion::MotionStats& motion_stats() const;
 
  private:
   struct Layers;
