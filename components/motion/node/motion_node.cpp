@@ -156,10 +156,7 @@ int motion_main(int argc, char** argv) {
       const int code = single.run();
       for (const auto& [stream, s] : estimators) {
         // Whether the stream showed 3-D structure, and how much of it the estimator held still.
-        const motion::MotionStats& m = s.estimator.stats();
-        spdlog::info("stream '{}': 3-D structure (parallax) found in {} of {} frames; {} feature-frames held still by their "
-                     "pixels (structure patch)",
-                     stream, m.structure_frames, m.decided_frames, m.structure_patch_holds);
+        spdlog::info("stream '{}': {}", stream, motion::describe_structure(s.estimator.stats()));
         if (s.saves > 0) {
           const double n = static_cast<double>(s.saves);
           spdlog::info("stream '{}': motion state saved at frame {} in '{}' ({} bytes; {} saves, on average {:.2f} ms to "

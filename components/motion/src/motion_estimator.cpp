@@ -340,19 +340,22 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   const double candidate_speed = o.release_ratio * std::max(decision_options.min_moving_speed_px, floor_px);
   for (size_t k = 0; k < survivors.size(); ++k) {
     const LiveFeature& f = survivors[k];
-    // A corner on a roof's or crown's silhouette slides off its epipolar line: it does not start moving.
-    if (f.velocity.available) decided[k].velocity = edges.decided_velocity(parallax_sample(f, h), decided[k].velocity, f.classifier.moving());
-    // Pixels that static structure explains as well as the track does (structure_patch.hpp) do not
-    // move this frame; a moving feature stops after confirm_frames such frames.
-    ParallaxFilter::StructureMotion structure;
-    if (o.structure_patch_ratio > 0.0 && f.velocity.available &&
-        std::hypot(decided[k].velocity[0], decided[k].velocity[1]) >= candidate_speed &&
-        parallax_.structure_motion(parallax_sample(f, h), structure) &&
-        structure_explains_patch(structure_patch_errors(previous_.levels[0], current.levels[0], survivors_from[k], f.position,
-                                                        current_to_previous, structure, o.structure_patch_radius_px),
-                                 o)) {
-      decided[k].velocity = cv::Vec2d(0.0, 0.0);
-      ++stats_.structure_patch_holds;
+    if (f.velocity.available) {
+      const ParallaxSample sample = parallax_sample(f, h);
+      // A corner on a roof's or crown's silhouette slides off its epipolar line: it does not start moving.
+      decided[k].velocity = edges.decided_velocity(sample, decided[k].velocity, f.classifier.moving());
+      // Pixels that static structure explains as well as the track does (structure_patch.hpp) do not
+      // move this frame; a moving feature stops after confirm_frames such frames.
+      ParallaxFilter::StructureMotion structure;
+      if (o.structure_patch_ratio > 0.0 && std::hypot(decided[k].velocity[0], decided[k].velocity[1]) >= candidate_speed &&
+          parallax_.structure_motion(sample, structure) &&
+          structure_explains_patch(structure_patch_errors(previous_.levels[0], current.levels[0], survivors_from[k],
+                                                          f.position, current_to_previous, structure,
+                                                          o.structure_patch_radius_px),
+                                   o)) {
+        decided[k].velocity = cv::Vec2d(0.0, 0.0);
+        ++stats_.structure_patch_holds;
+      }
     }
     // In a low-contrast frame a corner far below the threshold (noise on a weak corner, an edge it
     // slides along) cannot place itself to the precision the test needs: it does not start moving.
@@ -684,5 +687,14 @@ void MotionEstimator::restore_state(const std::vector<uint8_t>& bytes) { impl_->
 int64_t MotionEstimator::last_frame_index() const { return impl_->last_frame_index(); }
 const MotionOptions& MotionEstimator::options() const { return impl_->options(); }
 const MotionStats& MotionEstimator::stats() const { return impl_->stats(); }
+
+std::string describe_structure(const MotionStats& stats) {
+  if (stats.structure_frames == 0) {
+    return "no 3-D structure found (parallax steps idle in all " + std::to_string(stats.decided_frames) + " frames)";
+  }
+  return "3-D structure (parallax) found in " + std::to_string(stats.structure_frames) + " of " +
+         std::to_string(stats.decided_frames) + " frames; " + std::to_string(stats.structure_patch_holds) +
+         " feature-frames held still by their pixels (structure patch)";
+}
 
 }  // namespace uavmot::motion

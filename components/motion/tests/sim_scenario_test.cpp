@@ -148,18 +148,18 @@ TEST(SimScenario, Paper) {
   EXPECT_GE(s.stats.decided_frames, 70);
   EXPECT_EQ(s.stats.structure_frames, 0);
   EXPECT_EQ(s.stats.structure_patch_holds, 0);
+  EXPECT_EQ(describe_structure(s.stats).rfind("no 3-D structure found", 0), 0u) << describe_structure(s.stats);
 }
 
 TEST(SimScenario, TownWithBuildingsShowsStructureAndItsPixelsHoldFeatures) {
   // `urban3d`: roofs of 5-30 m under a camera at 300 m. The parallax fit finds the structure in most
   // frames and the structure-patch step holds silhouette corners and rooftop units still.
   const ScenarioScore s = run_preset("urban3d", 40);
-  std::printf("urban3d: structure found in %lld of %lld frames, %lld feature-frames held by their pixels\n",
-              static_cast<long long>(s.stats.structure_frames), static_cast<long long>(s.stats.decided_frames),
-              static_cast<long long>(s.stats.structure_patch_holds));
+  std::printf("urban3d: %s\n", describe_structure(s.stats).c_str());
   EXPECT_EQ(s.valid, s.pairs);
   EXPECT_GE(s.stats.structure_frames, s.stats.decided_frames / 2) << s.stats.decided_frames << " frames decided";
   EXPECT_GT(s.stats.structure_patch_holds, 0);
+  EXPECT_EQ(describe_structure(s.stats).rfind("3-D structure (parallax) found in", 0), 0u) << describe_structure(s.stats);
 }
 
 TEST(SimScenario, Fastcam) {

@@ -168,12 +168,7 @@ int process_main(int argc, char** argv) {
         spdlog::info("no vehicle shadows taken out of the boxes (too few bright vehicles, or none casting one consistent shadow)");
       }
       // Whether the flight showed 3-D structure, and how much of it the motion layer held still.
-      if (const motion::MotionStats& m = chain.motion_stats(); m.structure_frames > 0) {
-        spdlog::info("3-D structure (parallax) found in {} of {} frames; {} feature-frames held still by their pixels (structure patch)",
-                     m.structure_frames, m.decided_frames, m.structure_patch_holds);
-      } else {
-        spdlog::info("no 3-D structure found (parallax steps idle in all {} frames)", m.decided_frames);
-      }
+      spdlog::info("{}", motion::describe_structure(chain.motion_stats()));
       return exit_code;
     };
   });

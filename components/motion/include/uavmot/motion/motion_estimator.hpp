@@ -10,6 +10,7 @@
 
 #include <cstdint>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include "uavmot/core/chain_types.hpp"
@@ -41,6 +42,10 @@ struct MotionStats {
   int64_t structure_frames = 0;
   int64_t structure_patch_holds = 0;
 };
+
+// One line for logs: whether the frames showed 3-D structure and how much of it was held still
+// (the in-process chain and the motion node say the same).
+std::string describe_structure(const MotionStats& stats);
 
 class MotionEstimator {
  public:

@@ -155,10 +155,11 @@ struct MotionOptions {
   double parallax_edge_radius_px = 24.0;
   int parallax_edge_min_supporters = 3;
   double parallax_edge_speed_factor = 1.5;
-  // A candidate's own pixels, where the epipole is trusted: it does not move this frame when every
-  // pixel of its patch is explained about as well by static structure (the previous frame shifted
-  // along the epipolar line, 0 to the cap) as by its own track, i.e. the structure's per-pixel
-  // error is below structure_patch_ratio x the track's (structure_patch.hpp; 0 = off).
+  // A candidate's own pixels, where the epipole is trusted: it does not move this frame when its
+  // patch is explained about as well by static structure (the previous frame shifted along the
+  // epipolar line, 0 to the cap) as by its own track: the mean over the patch of each pixel's best
+  // structure shift is at most structure_patch_ratio x the same for the track (structure_patch.hpp;
+  // 0 = off).
   double structure_patch_ratio = 1.0;
   int structure_patch_radius_px = 3;  // the patch is (2 r + 1)^2 pixels
 };
