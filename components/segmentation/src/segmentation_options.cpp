@@ -82,6 +82,7 @@ void validate(const SegmentationOptions& o) {
   require(in_range(r.shift_check_min_speed_px, 0.0, 100.0), "shift_check_min_speed_px", "in [0, 100]");
   require(in_range(r.shift_check_search_px, 0.0, 10.0), "shift_check_search_px", "in [0, 10]");
   require(in_range(r.shadow_correction_factor, 0.0, 2.0), "shadow_correction_factor", "in [0, 2]");
+  require(in_range(r.shadow_size_correction_factor, 0.0, 2.0), "shadow_size_correction_factor", "in [0, 2]");
   require(in_range(r.shadow_max_m, 0.0, 20.0), "shadow_max_m", "in [0, 20]");
   require(in_range(r.shadow_bright_margin, 0.0, 255.0), "shadow_bright_margin", "in [0, 255]");
   require(r.shadow_min_regions >= 1 && r.shadow_min_regions <= 100000, "shadow_min_regions", "in [1, 100000]");
@@ -97,7 +98,7 @@ SegmentationOptions load_segmentation_options(const ConfigNode& node) {
                     "threshold_min_fraction", "connectivity", "closing_size_px", "box_fit", "edge_band_px", "split_width_factor", "split_length_factor", "group_length_factor", "group_width_factor", "group_touch_px", "recentre_min_offset_fraction", "motion_evidence_margin_widths", "motion_evidence_max_inside", "motion_evidence_min_offset_px", "min_length_factor",
                     "max_length_factor", "min_width_factor", "max_width_factor", "min_supporting_features",
                     "support_margin_px", "fallback_to_cluster_box", "duplicate_overlap", "shift_check_ratio",
-                    "shift_check_min_speed_px", "shift_check_search_px", "shadow_correction_factor", "shadow_max_m",
+                    "shift_check_min_speed_px", "shift_check_search_px", "shadow_correction_factor", "shadow_size_correction_factor", "shadow_max_m",
                     "shadow_bright_margin", "shadow_min_regions", "shadow_agreement_px", "shadow_min_darkness"});
   std::string method = to_string(o.method);
   node.read_choice("method", method, segmentation_method_names());
@@ -158,6 +159,7 @@ SegmentationOptions load_segmentation_options(const ConfigNode& node) {
   node.read("shift_check_min_speed_px", r.shift_check_min_speed_px, 0.0, 100.0);
   node.read("shift_check_search_px", r.shift_check_search_px, 0.0, 10.0);
   node.read("shadow_correction_factor", r.shadow_correction_factor, 0.0, 2.0);
+  node.read("shadow_size_correction_factor", r.shadow_size_correction_factor, 0.0, 2.0);
   node.read("shadow_max_m", r.shadow_max_m, 0.0, 20.0);
   node.read("shadow_bright_margin", r.shadow_bright_margin, 0.0, 255.0);
   node.read("shadow_min_regions", r.shadow_min_regions, 1, 100000);

@@ -358,6 +358,9 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
       if (region.method == SegmentationMethod::Clustering) continue;
       region.box.cx -= r.shadow_correction_factor * (*shadow)[0];
       region.box.cy -= r.shadow_correction_factor * (*shadow)[1];
+      if (r.shadow_size_correction_factor > 0.0) {
+        region.box = shrunk_by_shadow(region.box, r.shadow_size_correction_factor * *shadow);
+      }
     }
   }
   previous_stream_ = motion.stream_id;

@@ -206,4 +206,14 @@ std::optional<cv::Vec2d> ShadowOffset::offset() const {
   return offset;
 }
 
+OrientedBox shrunk_by_shadow(const OrientedBox& blob, const cv::Vec2d& shadow) {
+  const double a = blob.angle_deg * CV_PI / 180.0;
+  const double along = std::abs(shadow[0] * std::cos(a) + shadow[1] * std::sin(a));
+  const double across = std::abs(-shadow[0] * std::sin(a) + shadow[1] * std::cos(a));
+  OrientedBox body = blob;
+  body.length = std::max(blob.length - along, 0.5 * blob.length);
+  body.width = std::max(blob.width - across, 0.5 * blob.width);
+  return body;
+}
+
 }  // namespace uavmot::segmentation

@@ -57,6 +57,8 @@ TEST(SegmentationOptions, BadValuesNameTheField) {
   expect_error_mentions("closing_size_px: 4\n", "closing_size_px");
   expect_error_mentions("min_length_factor: 2\nmax_length_factor: 1\n", "max_length_factor");
   expect_error_mentions("shadow_correction_factor: -1\n", "shadow_correction_factor");
+  expect_error_mentions("shadow_size_correction_factor: 3\n", "shadow_size_correction_factor");
+  expect_error_mentions("shadow_size_correction_factor: .nan\n", "shadow_size_correction_factor");
   expect_error_mentions("shadow_min_regions: 0\n", "shadow_min_regions");
   expect_error_mentions("shadow_max_m: .nan\n", "shadow_max_m");
 }
@@ -64,14 +66,16 @@ TEST(SegmentationOptions, BadValuesNameTheField) {
 TEST(SegmentationOptions, ReadsTheShadowCorrection) {
   const SegmentationOptions o = load(
       "shadow_correction_factor: 0.5\nshadow_max_m: 3\nshadow_bright_margin: 20\nshadow_min_regions: 4\n"
-      "shadow_agreement_px: 0.5\nshadow_min_darkness: 5\n");
+      "shadow_agreement_px: 0.5\nshadow_min_darkness: 5\nshadow_size_correction_factor: 0.25\n");
   EXPECT_DOUBLE_EQ(o.regions.shadow_correction_factor, 0.5);
+  EXPECT_DOUBLE_EQ(o.regions.shadow_size_correction_factor, 0.25);
   EXPECT_DOUBLE_EQ(o.regions.shadow_max_m, 3.0);
   EXPECT_DOUBLE_EQ(o.regions.shadow_bright_margin, 20.0);
   EXPECT_EQ(o.regions.shadow_min_regions, 4);
   EXPECT_DOUBLE_EQ(o.regions.shadow_agreement_px, 0.5);
   EXPECT_DOUBLE_EQ(o.regions.shadow_min_darkness, 5.0);
   EXPECT_DOUBLE_EQ(load("{}").regions.shadow_correction_factor, 1.0);  // on by default
+  EXPECT_DOUBLE_EQ(load("{}").regions.shadow_size_correction_factor, 1.0);
 }
 
 TEST(SegmentationOptions, ReadsAndBoundsTheMotionEvidence) {

@@ -184,5 +184,26 @@ TEST(ShadowOffset, ABadBoxOrImageIsIgnored) {
   EXPECT_FALSE(huge.offset().has_value());
 }
 
+
+TEST(ShadowOffset, TheBodyIsTheBlobShrunkByItsShadow) {
+  // The inverse of with_shadow() for the size, whatever way the vehicle points and the sun shines.
+  for (const double angle : {0.0, 30.0, 90.0, -60.0}) {
+    for (const cv::Vec2d& s : {cv::Vec2d(2.0, 1.5), cv::Vec2d(-1.5, 2.5), cv::Vec2d(0.0, -3.0)}) {
+      const OrientedBox body{100.0, 50.0, 5.0, 14.0, angle};
+      const OrientedBox blob = with_shadow(body, s);
+      const OrientedBox found = shrunk_by_shadow(blob, s);
+      EXPECT_NEAR(found.length, body.length, 1e-9) << angle << " " << s;
+      EXPECT_NEAR(found.width, body.width, 1e-9) << angle << " " << s;
+      EXPECT_DOUBLE_EQ(found.cx, blob.cx);  // the centre is shadow_correction_factor's
+      EXPECT_DOUBLE_EQ(found.angle_deg, blob.angle_deg);
+    }
+  }
+  // An offset the box cannot hold leaves half of it.
+  const OrientedBox small{10.0, 10.0, 2.0, 4.0, 0.0};
+  const OrientedBox kept = shrunk_by_shadow(small, cv::Vec2d(6.0, 3.0));
+  EXPECT_DOUBLE_EQ(kept.length, 2.0);
+  EXPECT_DOUBLE_EQ(kept.width, 1.0);
+  EXPECT_DOUBLE_EQ(shrunk_by_shadow(small, cv::Vec2d(0.0, 0.0)).length, 4.0);
+}
 }  // namespace
 }  // namespace uavmot::segmentation

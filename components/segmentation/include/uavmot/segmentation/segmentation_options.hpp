@@ -144,6 +144,9 @@ struct RegionOptions {
   // regions have voted, the two halves of the votes find offsets within `shadow_agreement_px` and the
   // shadow band is on average more than `shadow_min_darkness` grey levels darker than the road.
   double shadow_correction_factor = 1.0;
+  // ... and each such box, body and shadow, shrinks by `shadow_size_correction_factor` x the
+  // offset's extent along its length and across it, to the body's own size (0 disables).
+  double shadow_size_correction_factor = 1.0;
   double shadow_max_m = 2.0;
   double shadow_bright_margin = 15.0;
   int shadow_min_regions = 10;

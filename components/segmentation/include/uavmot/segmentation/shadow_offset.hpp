@@ -37,6 +37,11 @@ struct ShadowOffsetOptions {
   double min_darkness = 0.0;       // the shadow bands' mean darkness must exceed this (grey levels)
 };
 
+// A blob of a body united with its shadow moved by `shadow` reaches |shadow| further along each of
+// its box's axes than the body: the blob's box shrunk by that much on the length and the width,
+// never below half of either (an offset the box cannot hold). The centre is left as it is.
+OrientedBox shrunk_by_shadow(const OrientedBox& blob, const cv::Vec2d& shadow);
+
 class ShadowOffset {
  public:
   explicit ShadowOffset(ShadowOffsetOptions options);
