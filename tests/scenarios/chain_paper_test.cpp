@@ -101,14 +101,18 @@ TEST(ChainPaperScenario, ThreeSeedsHoldTheirCorrectRatePrecisionAndFalseAlarms) 
   // 2026-11-29, session 35, boxes moved onto their motion evidence (docs/segmentation.md, "Motion evidence"): correct
   // 96.33 / 92.26 / 94.90 % -> 96.50 / 92.96 / 94.91 %, false alarms 1.96 / 1.65 / 1.40 -> 1.53 / 0.98 / 1.33 per frame
   // (mean 1.67 -> 1.28; the false-alarm bound fails without it). Held-out seeds 100-104 first (docs/tracking.md).
+  // 2026-12-06, session 37, the shadow taken out of the boxes' size too (docs/segmentation.md, "Shadows"): e_w
+  // 1.98 / 2.12 / 2.10 -> 1.65 / 1.94 / 1.59 px, e_l 2.41 / 2.98 / 2.33 -> 1.86 / 2.71 / 1.64 px (the size bounds fail
+  // without it), correct 96.50 / 92.96 / 94.91 -> 96.49 / 92.88 / 95.03 %, false alarms 1.53 / 0.98 / 1.33 -> 1.64 / 1.27 /
+  // 1.32 per frame (mean 1.28 -> 1.41). Held-out seeds 100-109 first (docs/tracking.md, session 37).
   EXPECT_GE(correct, 0.94);
   EXPECT_GE(worst_correct, 0.92);
   EXPECT_EQ(under, 0);
   EXPECT_LE(over, 0.005);
   EXPECT_LE(ex, 1.1);
   EXPECT_LE(ey, 1.0);
-  EXPECT_LE(ew, 2.1);
-  EXPECT_LE(el, 2.9);
+  EXPECT_LE(ew, 1.85);
+  EXPECT_LE(el, 2.3);
   EXPECT_LE(fa, 1.45);
   EXPECT_GE(mota, 0.89);
 }
