@@ -184,7 +184,6 @@ TEST(ShadowOffset, ABadBoxOrImageIsIgnored) {
   EXPECT_FALSE(huge.offset().has_value());
 }
 
-
 TEST(ShadowOffset, TheBodyIsTheBlobShrunkByItsShadow) {
   // The inverse of with_shadow() for the size, whatever way the vehicle points and the sun shines.
   for (const double angle : {0.0, 30.0, 90.0, -60.0}) {
