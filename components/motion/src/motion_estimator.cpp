@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
-#include <deque>
 #include <limits>
 #include <mutex>
 #include <string>
@@ -43,7 +42,17 @@ struct LiveFeature {
   float corner_strength = 0.0f;  // its LK window's minimum eigenvalue this frame (min_corner_response units)
   VelocityEstimate velocity;
   MotionClassifier classifier;
+
+  // Features are moved several times a frame (vector growth, the survivors' filters). cv::Vec's
+  // copy constructor is not noexcept, which would make std::vector copy every history instead of
+  // moving it; nothing here throws on a move.
+  LiveFeature() = default;
+  LiveFeature(const LiveFeature&) = default;
+  LiveFeature(LiveFeature&&) noexcept = default;
+  LiveFeature& operator=(const LiveFeature&) = default;
+  LiveFeature& operator=(LiveFeature&&) noexcept = default;
 };
+static_assert(std::is_nothrow_move_constructible_v<LiveFeature>);
 
 TrackedFeature to_output(const LiveFeature& f) {
   TrackedFeature out;
@@ -610,7 +619,8 @@ void MotionEstimator::Impl::restore_state(const std::vector<uint8_t>& bytes) {
     if (n < 1 || n > static_cast<uint64_t>(std::max(1, options_.history_frames))) {
       r.fail("feature " + std::to_string(f.id) + " has " + std::to_string(n) + " history positions");
     }
-    std::deque<cv::Point2d> history;
+    std::vector<cv::Point2d> history;
+    history.reserve(n);
     for (uint64_t k = 0; k < n; ++k) {
       const double x = r.get<double>();
       const double y = r.get<double>();

@@ -10,8 +10,10 @@ void FeatureHistory::carry_forward(const Homography& h) {
 }
 
 void FeatureHistory::push(const cv::Point2f& position, int capacity) {
+  if (positions_.capacity() == 0) positions_.reserve(static_cast<size_t>(std::max(1, capacity)) + 1);
   positions_.emplace_back(position.x, position.y);
-  while (static_cast<int>(positions_.size()) > capacity) positions_.pop_front();
+  const auto excess = static_cast<std::ptrdiff_t>(positions_.size()) - std::max(capacity, 0);
+  if (excess > 0) positions_.erase(positions_.begin(), positions_.begin() + excess);
 }
 
 VelocityEstimate estimate_velocity(const FeatureHistory& history, const MotionOptions& o) {
