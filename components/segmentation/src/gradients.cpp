@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <mutex>
 
 #include <opencv2/imgproc.hpp>
 
@@ -45,7 +46,7 @@ struct Tap {
 };
 
 // For P <= 16: is_texture_primitive(riu2) of every bit pattern, so a pixel costs one lookup.
-std::vector<uint8_t> primitive_table(int count) {
+std::vector<uint8_t> make_primitive_table(int count) {
   std::vector<uint8_t> table(size_t{1} << count);
   std::array<float, kMaxNeighbours> g{};
   for (size_t mask = 0; mask < table.size(); ++mask) {
@@ -53,6 +54,17 @@ std::vector<uint8_t> primitive_table(int count) {
     table[mask] = is_texture_primitive(riu2_code(g.data(), count, 0.0f), count) ? 1 : 0;
   }
   return table;
+}
+
+// The table of each P, built once per process: a cluster window is a few hundred pixels, and
+// building the 256 entries of P = 8 for each of its radii cost about a sixth of its LBP gradient.
+constexpr int kMaxTabulatedNeighbours = 16;
+const std::vector<uint8_t>& primitive_table(int count) {
+  static std::array<std::once_flag, kMaxTabulatedNeighbours + 1> built;
+  static std::array<std::vector<uint8_t>, kMaxTabulatedNeighbours + 1> tables;
+  const auto i = static_cast<size_t>(count);
+  std::call_once(built[i], [&] { tables[i] = make_primitive_table(count); });
+  return tables[i];
 }
 
 // Adds the LBP gradient of one radius to `acc`; `padded` is the float image with `pad` border.
@@ -76,7 +88,8 @@ void add_lbp_radius(const cv::Mat& padded, int pad, int count, double radius, do
       ++taps[p].count;
     }
   }
-  const std::vector<uint8_t> table = count <= 16 ? primitive_table(count) : std::vector<uint8_t>{};
+  static const std::vector<uint8_t> kNoTable;
+  const std::vector<uint8_t>& table = count <= kMaxTabulatedNeighbours ? primitive_table(count) : kNoTable;
 
   const float min_variance = static_cast<float>(min_stddev * min_stddev);
   const float inv_count = 1.0f / static_cast<float>(count);
