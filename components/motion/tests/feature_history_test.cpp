@@ -31,7 +31,7 @@ TEST(FeatureHistory, CarryForwardMapsEveryPositionIntoTheCurrentFrame) {
 }
 
 // The estimator moves thousands of features a frame: a move must neither allocate nor throw (a
-// deque's move allocated in libstdc++, 14 000 times per 1080p frame).
+// deque's move allocated in libstdc++, 13 800 times per 1080p frame).
 TEST(FeatureHistory, MovesWithoutCopying) {
   static_assert(std::is_nothrow_move_constructible_v<FeatureHistory>);
   FeatureHistory h;
