@@ -10,9 +10,14 @@
 #   JPEG quality), so the sequences vary as real flights do; cached apart from the plain ones.
 #   (default: --held-out, 250 frames, 2 jobs, presets paper hd small lowsnr fastcam dense slow urban3d oblique)
 #   UAVMOT_BIN=OTHER/bin/uavmot runs another build (an experiment's) on the same cached sequences.
+#   --against OTHER: also print, per preset, this label's means against label OTHER's (the same
+#   seeds under the same --work) and on how many seeds the correct rate rose or fell: how a
+#   change is judged (docs/tracking.md, "Validation protocol").
+#   --report: run nothing; print the tables from the results already under --work/--label.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seeds="100 101 102 103 104 105 106 107 108 109" frames=250 jobs=2 config="" work=out/validation label=default presets=() vary=""
+against="" report_only=""
 while [ $# -gt 0 ]; do
   case "$1" in
     --tuning) seeds="1 2 3 4 5" ;;
@@ -24,7 +29,9 @@ while [ $# -gt 0 ]; do
     --work) work=$2; shift ;;
     --label) label=$2; shift ;;
     --vary) vary=--vary ;;
-    -h|--help) sed -n 2,12p "$0"; exit 0 ;;
+    --against) against=$2; shift ;;
+    --report) report_only=1 ;;
+    -h|--help) sed -n 2,16p "$0"; exit 0 ;;
     -*) echo "validate: unknown option '$1'" >&2; exit 2 ;;
     *) presets+=("$1") ;;
   esac
@@ -32,6 +39,12 @@ while [ $# -gt 0 ]; do
 done
 [ ${#presets[@]} -gt 0 ] || presets=(paper hd small lowsnr fastcam dense slow urban3d oblique)
 bin=${UAVMOT_BIN:-build/bin/uavmot}
+if [ -n "$against" ] && [ ! -d "$work/$against" ]; then
+  echo "validate: no results of label '$against' under $work to compare with" >&2; exit 2
+fi
+if [ -n "$report_only" ]; then
+  [ -d "$work/$label" ] || { echo "validate: no results of label '$label' under $work" >&2; exit 2; }
+else
 [ -x "$bin" ] || { echo "validate: $bin is missing; build first (bash tools/build.sh)" >&2; exit 1; }
 mkdir -p "$work"
 
@@ -52,10 +65,11 @@ export bin work frames label config vary
 mkdir -p "$work/$label"
 for preset in "${presets[@]}"; do for seed in $seeds; do echo "$preset $seed"; done; done |
   xargs -P "$jobs" -L 1 bash -c 'run_one "$0" "$1"'
+fi
 
-python3 - "$work/$label" "$seeds" "${vary:+-vary}" "${presets[@]}" <<'PY'
+python3 - "$work/$label" "$seeds" "${vary:+-vary}" "${against:+$work/$against}" "${presets[@]}" <<'PY'
 import json, os, sys
-root, seeds, suffix, presets = sys.argv[1], sys.argv[2].split(), sys.argv[3], sys.argv[4:]
+root, seeds, suffix, other, presets = sys.argv[1], sys.argv[2].split(), sys.argv[3], sys.argv[4], sys.argv[5:]
 def band_correct(e, band):
     # Correct % of one apparent-size band (docs/eval.md); None where the seed has none of that size.
     for b in e["completeness"].get("by_length_px", []):
@@ -90,4 +104,31 @@ for p in presets:
         vals = [v for v in (get(e) for e in runs) if v is not None]
         cells.append(f"{sum(vals) / len(vals):.2f} ({worst(vals):.2f})" if vals else "-")
     print(f"| {p} | {len(runs)} | " + " | ".join(cells) + " |")
+
+if other:
+    # Only seeds both labels have, so that the means compare like with like.
+    compared = [("correct %", cols[0][1], 1), ("FA / frame", cols[7][1], -1),
+                ("on structure / frame", cols[9][1], -1), ("feature precision", cols[10][1], 1),
+                ("feature recall", cols[11][1], 1)]
+    print(f"\n{os.path.basename(other)} -> {os.path.basename(root)}: means over the seeds both have; "
+          "seeds: on how many the correct rate rose / fell by more than 0.1 point\n")
+    print("| preset | seeds | " + " | ".join(c[0] for c in compared) + " | correct % up / down |")
+    print("|---|---:|" + "---|" * len(compared) + "---:|")
+    for p in presets:
+        pairs = []
+        for s in seeds:
+            a, b = (os.path.join(r, f"{p}{suffix}-{s}", "eval.json") for r in (other, root))
+            if os.path.exists(a) and os.path.exists(b):
+                pairs.append((json.load(open(a)), json.load(open(b))))
+        if not pairs:
+            print(f"| {p} | 0 |" + " |" * (len(compared) + 1)); continue
+        cells = []
+        for name, get, _ in compared:
+            before = [get(a) for a, _ in pairs]
+            after = [get(b) for _, b in pairs]
+            cells.append(f"{sum(before) / len(pairs):.2f} -> {sum(after) / len(pairs):.2f}")
+        rates = [(cols[0][1](a), cols[0][1](b)) for a, b in pairs]
+        up = sum(1 for x, y in rates if y > x + 0.1)
+        down = sum(1 for x, y in rates if y < x - 0.1)
+        print(f"| {p} | {len(pairs)} | " + " | ".join(cells) + f" | {up} / {down} |")
 PY
