@@ -42,6 +42,12 @@ bin=${UAVMOT_BIN:-build/bin/uavmot}
 if [ -n "$against" ] && [ ! -d "$work/$against" ]; then
   echo "validate: no results of label '$against' under $work to compare with" >&2; exit 2
 fi
+# Runs of another length (or varied scenes) are not comparable.
+if [ -n "$against" ] && [ -f "$work/$against/run.txt" ] && [ -z "$report_only" ] &&
+   [ "$(cat "$work/$against/run.txt")" != "frames=$frames${vary:+ vary}" ]; then
+  echo "validate: label '$against' was run with $(cat "$work/$against/run.txt"), this one with frames=$frames${vary:+ vary}" >&2
+  exit 2
+fi
 if [ -n "$report_only" ]; then
   [ -d "$work/$label" ] || { echo "validate: no results of label '$label' under $work" >&2; exit 2; }
 else
@@ -63,6 +69,7 @@ run_one() {
 export -f run_one
 export bin work frames label config vary
 mkdir -p "$work/$label"
+echo "frames=$frames${vary:+ vary}" > "$work/$label/run.txt"  # what --against checks
 for preset in "${presets[@]}"; do for seed in $seeds; do echo "$preset $seed"; done; done |
   xargs -P "$jobs" -L 1 bash -c 'run_one "$0" "$1"'
 fi
