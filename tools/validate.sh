@@ -42,15 +42,18 @@ bin=${UAVMOT_BIN:-build/bin/uavmot}
 if [ -n "$against" ] && [ ! -d "$work/$against" ]; then
   echo "validate: no results of label '$against' under $work to compare with" >&2; exit 2
 fi
-# Runs of another length (or varied scenes) are not comparable.
-if [ -n "$against" ] && [ -f "$work/$against/run.txt" ] && [ -z "$report_only" ] &&
-   [ "$(cat "$work/$against/run.txt")" != "frames=$frames${vary:+ vary}" ]; then
-  echo "validate: label '$against' was run with $(cat "$work/$against/run.txt"), this one with frames=$frames${vary:+ vary}" >&2
+if [ -n "$report_only" ] && [ ! -d "$work/$label" ]; then
+  echo "validate: no results of label '$label' under $work" >&2; exit 2
+fi
+# Runs of another length (or varied scenes) are not comparable. With --report this label's own
+# record says how it was run; otherwise the arguments do.
+this_run="frames=$frames${vary:+ vary}"
+if [ -n "$report_only" ] && [ -f "$work/$label/run.txt" ]; then this_run=$(cat "$work/$label/run.txt"); fi
+if [ -n "$against" ] && [ -f "$work/$against/run.txt" ] && [ "$(cat "$work/$against/run.txt")" != "$this_run" ]; then
+  echo "validate: label '$against' was run with $(cat "$work/$against/run.txt"), this one with $this_run" >&2
   exit 2
 fi
-if [ -n "$report_only" ]; then
-  [ -d "$work/$label" ] || { echo "validate: no results of label '$label' under $work" >&2; exit 2; }
-else
+if [ -z "$report_only" ]; then
 [ -x "$bin" ] || { echo "validate: $bin is missing; build first (bash tools/build.sh)" >&2; exit 1; }
 mkdir -p "$work"
 
@@ -69,7 +72,7 @@ run_one() {
 export -f run_one
 export bin work frames label config vary
 mkdir -p "$work/$label"
-echo "frames=$frames${vary:+ vary}" > "$work/$label/run.txt"  # what --against checks
+echo "$this_run" > "$work/$label/run.txt"  # what --against checks
 for preset in "${presets[@]}"; do for seed in $seeds; do echo "$preset $seed"; done; done |
   xargs -P "$jobs" -L 1 bash -c 'run_one "$0" "$1"'
 fi
@@ -114,12 +117,11 @@ for p in presets:
 
 if other:
     # Only seeds both labels have, so that the means compare like with like.
-    compared = [("correct %", cols[0][1], 1), ("FA / frame", cols[7][1], -1),
-                ("on structure / frame", cols[9][1], -1), ("feature precision", cols[10][1], 1),
-                ("feature recall", cols[11][1], 1)]
+    figure = {name: get for name, get, _ in cols}
+    compared = ["correct %", "FA / frame", "on structure / frame", "feature precision", "feature recall"]
     print(f"\n{os.path.basename(other)} -> {os.path.basename(root)}: means over the seeds both have; "
           "seeds: on how many the correct rate rose / fell by more than 0.1 point\n")
-    print("| preset | seeds | " + " | ".join(c[0] for c in compared) + " | correct % up / down |")
+    print("| preset | seeds | " + " | ".join(compared) + " | correct % up / down |")
     print("|---|---:|" + "---|" * len(compared) + "---:|")
     for p in presets:
         pairs = []
@@ -130,11 +132,11 @@ if other:
         if not pairs:
             print(f"| {p} | 0 |" + " |" * (len(compared) + 1)); continue
         cells = []
-        for name, get, _ in compared:
-            before = [get(a) for a, _ in pairs]
-            after = [get(b) for _, b in pairs]
-            cells.append(f"{sum(before) / len(pairs):.2f} -> {sum(after) / len(pairs):.2f}")
-        rates = [(cols[0][1](a), cols[0][1](b)) for a, b in pairs]
+        for name in compared:
+            before = sum(figure[name](a) for a, _ in pairs) / len(pairs)
+            after = sum(figure[name](b) for _, b in pairs) / len(pairs)
+            cells.append(f"{before:.2f} -> {after:.2f}")
+        rates = [(figure["correct %"](a), figure["correct %"](b)) for a, b in pairs]
         up = sum(1 for x, y in rates if y > x + 0.1)
         down = sum(1 for x, y in rates if y < x - 0.1)
         print(f"| {p} | {len(pairs)} | " + " | ".join(cells) + f" | {up} / {down} |")
