@@ -9,7 +9,9 @@ the rule), beside it (within 1.5 vehicle lengths), or far (farther, or no moving
 It also counts the false alarms whose nearest moving vehicle has a box of its own in that frame, and
 splits those overlapping a vehicle by whether that vehicle has its own box (else the box is a
 misplaced box of a vehicle the run missed: one miss and one false alarm) and by the box's area
-against the vehicle's (larger: over 1.5 x; smaller: under 0.67 x; else similar). Last, from the
+against the vehicle's (larger: over 1.5 x; smaller: under 0.67 x; else similar); for the similar-sized
+ones on a missed vehicle, how far their centres lie from the vehicle's along its travel and across it,
+and how far their long axes turn from its (docs/tracking.md, session 39). Last, from the
 vehicles' side: the moving vehicles the run missed that have one, or two or more, false-alarm boxes
 overlapping them (a box beside the car, or two tracks on its two edges: docs/tracking.md, session 27).
 
@@ -66,6 +68,25 @@ def intersection_area(subject, clip):
     return area(out) if len(out) >= 3 else 0.0
 
 
+def median(values):
+    return sorted(values)[len(values) // 2]
+
+
+def offset_in_vehicle_frame(box, vehicle_row, vehicle_box):
+    """A box's centre relative to a vehicle's, along its direction of travel (vx, vy of gt_obb.csv;
+    its axis when it stands) and across it, and the angle between their longer sides (deg)."""
+    vx, vy = float(vehicle_row["vx"]), float(vehicle_row["vy"])
+    if math.hypot(vx, vy) == 0:
+        vx, vy = math.cos(math.radians(vehicle_box[4])), math.sin(math.radians(vehicle_box[4]))
+    speed = math.hypot(vx, vy)
+    dx, dy = box[0] - vehicle_box[0], box[1] - vehicle_box[1]
+
+    def long_axis(b):
+        return b[4] if b[3] >= b[2] else b[4] + 90.0
+    axis = abs((long_axis(box) - long_axis(vehicle_box) + 90.0) % 180.0 - 90.0)
+    return (dx * vx + dy * vy) / speed, (-dx * vy + dy * vx) / speed, axis
+
+
 def read_boxes(path, keep):
     rows = collections.defaultdict(list)
     with open(path) as f:
@@ -113,6 +134,7 @@ def main():
     places = collections.Counter()
     overlapping = collections.Counter()  # (vehicle has its own box or was missed, box size) -> boxes
     beside_a_found_vehicle = 0
+    misplaced = []  # (along, across, axis error) of the similar-sized boxes on a vehicle the run missed
     missed_with_boxes = collections.Counter()  # missed moving vehicles by false-alarm boxes on them (0, 1, 2 = two or more)
     for frame, boxes in sorted(tracks.items()):
         vehicles = truth.get(frame, [])
@@ -144,6 +166,8 @@ def main():
                 ratio = area(poly) / max(area(gpoly), 1e-9)
                 size = "larger" if ratio > 1.5 else "smaller" if ratio < 0.67 else "similar"
                 overlapping["own box" if g["id"] in found_vehicles else "missed", size] += 1
+                if size == "similar" and g["id"] not in found_vehicles:
+                    misplaced.append(offset_in_vehicle_frame(box, g, gbox))
             elif distance < 1.5 * gbox[3]:
                 places["beside"] += 1
             else:
@@ -159,6 +183,14 @@ def main():
         label = "on a vehicle the run missed" if own == "missed" else "on a vehicle with its own box"
         sizes = ", ".join(f"{size} {overlapping[own, size]}" for size in ("similar", "larger", "smaller"))
         print(f"  overlapping, {label}: {sum(overlapping[own, s] for s in ('similar', 'larger', 'smaller'))} ({sizes})")
+    if misplaced:
+        along = sorted(m[0] for m in misplaced)
+        across = sorted(abs(m[1]) for m in misplaced)
+        axis = sorted(m[2] for m in misplaced)
+        print(f"  similar-sized boxes on a vehicle the run missed, against it: offset along its travel median "
+              f"{median(along):+.2f} px (quartiles {along[len(along) // 4]:+.2f}, {along[3 * len(along) // 4]:+.2f}), "
+              f"across {median(across):.2f} px; axis off by a median {median(axis):.1f} deg, "
+              f"more than 30 deg in {100.0 * sum(a > 30 for a in axis) / len(axis):.0f} %")
     missed = sum(missed_with_boxes.values())
     print(f"missed moving instances in frames with boxes: {missed}; with a false-alarm box on them: "
           f"{missed_with_boxes[1] + missed_with_boxes[2]} (one {missed_with_boxes[1]}, two or more {missed_with_boxes[2]})")

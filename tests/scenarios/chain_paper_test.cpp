@@ -105,6 +105,9 @@ TEST(ChainPaperScenario, ThreeSeedsHoldTheirCorrectRatePrecisionAndFalseAlarms) 
   // 1.98 / 2.12 / 2.10 -> 1.65 / 1.94 / 1.59 px, e_l 2.41 / 2.98 / 2.33 -> 1.86 / 2.71 / 1.64 px (the size bounds fail
   // without it), correct 96.50 / 92.96 / 94.91 -> 96.49 / 92.88 / 95.03 %, false alarms 1.53 / 0.98 / 1.33 -> 1.64 / 1.27 /
   // 1.32 per frame (mean 1.28 -> 1.41). Held-out seeds 100-109 first (docs/tracking.md, session 37).
+  // 2026-12-06, session 39, the travel heading (docs/tracking.md): correct 96.49 / 92.88 / 95.03 -> 96.64 / 93.09 /
+  // 94.94 %, false alarms 1.64 / 1.27 / 1.32 -> 0.94 / 1.17 / 1.35 per frame (mean 1.41 -> 1.15; the false-alarm bound
+  // fails without it). Held-out seeds 100-109 first.
   EXPECT_GE(correct, 0.94);
   EXPECT_GE(worst_correct, 0.92);
   EXPECT_EQ(under, 0);
@@ -113,7 +116,7 @@ TEST(ChainPaperScenario, ThreeSeedsHoldTheirCorrectRatePrecisionAndFalseAlarms) 
   EXPECT_LE(ey, 1.0);
   EXPECT_LE(ew, 1.85);
   EXPECT_LE(el, 2.3);
-  EXPECT_LE(fa, 1.45);
+  EXPECT_LE(fa, 1.3);
   EXPECT_GE(mota, 0.89);
 }
 
@@ -144,14 +147,16 @@ void score_seeds_1_to_3(const std::string& preset, SeedFigures& out) {
 // (`flat_scene_speed_factor` 0.8, docs/motion.md) 67.37 / 69.53 / 69.62 %, 5.59 / 5.25 / 6.37
 // (mean 68.8 %, 5.74). Sessions 31-34 brought them to 72.21 / 72.06 / 73.16 %, 5.03 / 5.66 / 6.05 (mean 72.5 %,
 // 5.58); with the boxes moved onto their motion evidence (docs/segmentation.md, session 35: an 8 x 3 px road-grey car's
-// blob is mostly its shadow) 74.24 / 73.86 / 75.25 %, 3.70 / 4.22 / 4.97 (mean 74.5 %, 4.30): all three bounds fail
-// without it. Issue 18's target for `small` (>= 80 %) is not met yet.
+// blob is mostly its shadow) 74.24 / 73.86 / 75.25 %, 3.70 / 4.22 / 4.97 (mean 74.5 %, 4.30). With the travel heading
+// (docs/tracking.md, session 39: a car with one feature gets its box's axis from where it drives, not from its blob)
+// 75.52 / 75.45 / 75.98 %, 3.78 / 3.01 / 4.51 (mean 75.7 %, 3.77): all three bounds fail without it. Issue 18's
+// target for `small` (>= 80 %) is not met yet.
 TEST(ChainSmallScenario, ThreeSeedsOfEightPixelCarsHoldTheirCorrectRateAndFalseAlarms) {
   SeedFigures f;
   ASSERT_NO_FATAL_FAILURE(score_seeds_1_to_3("small", f));
-  EXPECT_GE(f.correct, 0.735);
-  EXPECT_GE(f.worst_correct, 0.73);
-  EXPECT_LE(f.false_alarms, 4.7);
+  EXPECT_GE(f.correct, 0.75);
+  EXPECT_GE(f.worst_correct, 0.745);
+  EXPECT_LE(f.false_alarms, 4.1);
 }
 
 // `lowsnr` (contrast 0.6, noise sigma 6, JPEG 70, 55 % dark cars): most missed cars had no corner
@@ -161,27 +166,31 @@ TEST(ChainSmallScenario, ThreeSeedsOfEightPixelCarsHoldTheirCorrectRateAndFalseA
 // 3.27 / 3.27 false alarms per frame (mean 63.8 %, 3.72); with it 83.12 / 77.18 / 79.22 %, 4.93 /
 // 4.18 / 4.69 (mean 79.8 %, 4.60). With the boxes moved onto their motion evidence (session 35): 84.85 / 76.85 /
 // 79.57 %, 4.05 / 4.18 / 4.11 (mean 80.4 %, 4.11; without it 80.3 %, 4.51, which fails the false-alarm bound).
+// Session 38's defaults gave 84.89 / 76.85 / 79.64 %, 4.02 / 4.18 / 4.14 (mean 80.5 %, 4.11); with the travel heading
+// (session 39) 86.43 / 78.76 / 80.10 %, 3.39 / 3.19 / 3.82 (mean 81.8 %, 3.47): all three bounds fail without it.
 // Issue 18's target (>= 80 %, <= 1 false alarm) is not met yet.
 TEST(ChainLowSnrScenario, ThreeSeedsOfLowContrastHoldTheirCorrectRateAndFalseAlarms) {
   SeedFigures f;
   ASSERT_NO_FATAL_FAILURE(score_seeds_1_to_3("lowsnr", f));
-  EXPECT_GE(f.correct, 0.785);
-  EXPECT_GE(f.worst_correct, 0.76);
-  EXPECT_LE(f.false_alarms, 4.4);
+  EXPECT_GE(f.correct, 0.81);
+  EXPECT_GE(f.worst_correct, 0.775);
+  EXPECT_LE(f.false_alarms, 3.8);
 }
 
 // `dense` (queues at junctions, cars creeping at 0.05-0.15 px/frame, under the speed floor of frames without 3-D
 // structure): with the creep rule (docs/motion.md, `creep_speed_factor`) seeds 1-3, 150 frames, went from 79.64 / 74.49
 // / 80.80 % correct, 4.90 / 2.90 / 3.35 false alarms per frame (mean 78.3 %, 3.72) to 85.11 / 78.18 / 84.88 %, 3.97 /
 // 3.09 / 3.31 (mean 82.7 %, 3.45). With the boxes moved onto their motion evidence (session 35): 85.06 / 78.59 /
-// 85.14 %, 3.53 / 2.67 / 2.96 (mean 82.9 %, 3.05; the false-alarm bound fails without it). Issue 18's target (>= 80 %
-// on every seed, <= 1 false alarm) is not met yet.
+// 85.14 %, 3.53 / 2.67 / 2.96 (mean 82.9 %, 3.05; the false-alarm bound fails without it). Session 38's defaults gave
+// 84.93 / 78.70 / 85.02 %, 3.64 / 2.69 / 2.97 (mean 82.9 %, 3.10); with the travel heading (session 39) 85.37 /
+// 78.92 / 85.56 %, 3.17 / 2.71 / 2.85 (mean 83.3 %, 2.91; the false-alarm bound fails without it). Issue 18's target
+// (>= 80 % on every seed, <= 1 false alarm) is not met yet.
 TEST(ChainDenseScenario, ThreeSeedsOfQueuesHoldTheirCorrectRateAndFalseAlarms) {
   SeedFigures f;
   ASSERT_NO_FATAL_FAILURE(score_seeds_1_to_3("dense", f));
-  EXPECT_GE(f.correct, 0.81);
-  EXPECT_GE(f.worst_correct, 0.77);
-  EXPECT_LE(f.false_alarms, 3.3);
+  EXPECT_GE(f.correct, 0.82);
+  EXPECT_GE(f.worst_correct, 0.78);
+  EXPECT_LE(f.false_alarms, 3.0);
 }
 
 }  // namespace

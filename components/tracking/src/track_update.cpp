@@ -1,5 +1,6 @@
 #include "track_update.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <optional>
 
@@ -23,16 +24,41 @@ std::optional<double> update_with_feature_motion(KalmanState& kalman, const std:
   return heading;
 }
 
+// Without a feature heading, a track that has travelled far enough from where it started names its
+// own: the direction of that travel (a vehicle drives along its length). A small or slow car often
+// has one feature, or none fast enough, for a feature heading; its blob's own axis is then noise
+// (docs/tracking.md, session 39).
+std::optional<double> update_with_travel_heading(KalmanState& kalman, const TrackRecord& record,
+                                                const TrackerOptions& options, double vehicle_length_px) {
+  if (!(options.travel_heading_min_lengths > 0.0) || !(options.heading_sigma_deg > 0.0)) return std::nullopt;
+  const cv::Vec2d travel(kalman.mean(kX) - record.origin.x, kalman.mean(kY) - record.origin.y);
+  const double distance = cv::norm(travel);
+  if (distance < options.travel_heading_min_lengths * vehicle_length_px) return std::nullopt;
+  const double heading = std::atan2(travel[1], travel[0]) * 180.0 / M_PI;
+  // After a bend the chord no longer points where the track goes: withheld while the track's own
+  // velocity points more than travel_heading_max_turn_deg away, and trusted less the more they differ.
+  const cv::Vec2d velocity(kalman.mean(kVx), kalman.mean(kVy));
+  const double speed = cv::norm(velocity);
+  const double turn_deg =
+      speed > 0.0 ? std::acos(std::clamp(velocity.dot(travel) / (speed * distance), -1.0, 1.0)) * 180.0 / M_PI : 0.0;
+  if (options.travel_heading_max_turn_deg > 0.0 && turn_deg > options.travel_heading_max_turn_deg) return std::nullopt;
+  // The ends of the travel are each known to about a region's position noise.
+  const double sigma = std::max({options.heading_sigma_deg, turn_deg,
+                                 std::atan2(2.0 * options.region_position_sigma_px, distance) * 180.0 / M_PI});
+  kalman = update_with_heading(kalman, heading, sigma);
+  return heading;
+}
+
 }  // namespace
 
 void update_track(TrackInFrame& track, const FeatureIndex& features, const TrackerOptions& options,
                   double vehicle_length_px) {
   const TrackMeasurement& m = track.measurement;
   const std::vector<const TrackedFeature*> linked = linked_features(track.record, features);
-  const std::optional<double> heading = update_with_feature_motion(track.kalman, linked, options);
+  std::optional<double> heading = update_with_feature_motion(track.kalman, linked, options);
   if (m.kind == MeasurementKind::Box) {
+    if (!heading) heading = update_with_travel_heading(track.kalman, track.record, options, vehicle_length_px);
     OrientedBox box = heading ? box_along_heading(m.box, *heading) : m.box;
-    // A heading means at least min_reconstruction_features linked features are present.
     if (heading && options.feature_span_margin_px >= 0.0) {
       std::vector<cv::Point2d> points;
       for (const TrackedFeature* f : linked) points.push_back(f->position);

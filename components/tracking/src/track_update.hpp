@@ -9,9 +9,10 @@
 namespace uavmot::tracking {
 
 // First the linked features' own motion (velocity, and above heading_min_speed_px the heading);
-// then the region, read along that heading and lengthened to the features (at most
-// `vehicle_length_px`), or a reconstructed centre; a track with neither but enough linked features
-// is carried by them. Sets region_hit and supported.
+// without a feature heading, a region-measured track that has travelled far enough takes the
+// direction of its travel as heading. Then the region, read along that heading and lengthened to
+// the features (at most `vehicle_length_px`), or a reconstructed centre; a track with neither but
+// enough linked features is carried by them. Sets region_hit and supported.
 void update_track(TrackInFrame& track, const FeatureIndex& features, const TrackerOptions& options,
                   double vehicle_length_px);
 

@@ -63,6 +63,12 @@ struct TrackerOptions {
   // features' median velocity measures the box's axis angle with this 1-sigma; 0 disables.
   double heading_min_speed_px = 0.3;
   double heading_sigma_deg = 10.0;
+  // A track without a feature heading (a small or slow car has one feature, or none fast enough) that
+  // has travelled this many x SceneInfo's vehicle length from where it started takes the direction of
+  // that travel as its heading, unless its velocity points more than travel_heading_max_turn_deg away
+  // (it has turned since). 0 disables each.
+  double travel_heading_min_lengths = 0.5;
+  double travel_heading_max_turn_deg = 45.0;
   // With a known heading, a region is lengthened to reach this far (px) beyond the linked features'
   // ends, up to SceneInfo's vehicle length: a road-grey car's blob may be its windscreen alone, while
   // its features sit on both window bars. Negative disables.
