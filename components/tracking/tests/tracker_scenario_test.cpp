@@ -316,24 +316,27 @@ TEST(TrackerScenario, StopAndGoKeepsItsIdentity) {
 // The direction of a box's longer side (a track may carry its box labelled either way round).
 double long_axis_deg(const OrientedBox& box) { return box.length >= box.width ? box.angle_deg : box.angle_deg + 90.0; }
 
-// A small slow car (8 x 3 px, 0.4 px/frame along 30 deg) with one feature: too few for a feature
-// heading. Its regions' axes scatter by 40 deg, as a blob a few pixels across does. The mean error of
-// the confirmed box's axis over frames 60-150, in degrees.
-double small_car_axis_error(const TrackerOptions& options) {
-  ObjectPath o = car(1, {200, 200}, {0.4 * std::cos(M_PI / 6.0), 0.4 * std::sin(M_PI / 6.0)});
+// A small car (8 x 3 px) with one feature, too few for a feature heading, whose regions' axes scatter
+// by `blob_angle_noise_deg` (a blob a few pixels across). The mean error of its confirmed box's long
+// axis over frames `from`..`to`, in degrees.
+double one_feature_car_axis_error(std::function<cv::Point2d(int)> path, double blob_angle_noise_deg,
+                                  const TrackerOptions& options, int from, int to) {
+  ObjectPath o;
+  o.truth_id = 1;
   o.length = 8.0;
   o.width = 3.0;
   o.feature_count = 1;
+  o.ground_centre = std::move(path);
   SceneOptions blobs;
-  blobs.region_angle_noise_deg = 40.0;
+  blobs.region_angle_noise_deg = blob_angle_noise_deg;
   SyntheticScene scene({o}, drifting_camera(), blobs);
   Tracker tracker(options);
   double error = 0.0;
   int boxes = 0;
-  for (int k = 1; k <= 150; ++k) {
+  for (int k = 1; k <= to; ++k) {
     const SyntheticFrame f = scene.next();
     const TrackList out = tracker.process(f.motion, f.segmentation);
-    if (k < 60) continue;
+    if (k < from) continue;
     for (const auto& t : out.tracks) {
       if (t.state != TrackState::Confirmed) continue;
       error += std::abs(axis_angle_difference_deg(long_axis_deg(t.box), long_axis_deg(f.truth[0].box)));
@@ -341,6 +344,12 @@ double small_car_axis_error(const TrackerOptions& options) {
     }
   }
   return boxes > 0 ? error / boxes : 90.0;
+}
+
+// Slow (0.4 px/frame along 30 deg), blob axes scattered by 40 deg, frames 60-150.
+double small_car_axis_error(const TrackerOptions& options) {
+  const auto path = straight({200, 200}, {0.4 * std::cos(M_PI / 6.0), 0.4 * std::sin(M_PI / 6.0)});
+  return one_feature_car_axis_error(path, 40.0, options, 60, 150);
 }
 
 TEST(TrackerScenario, ASmallCarWithoutFeatureHeadingTakesItsAxisFromItsTravel) {
@@ -351,37 +360,15 @@ TEST(TrackerScenario, ASmallCarWithoutFeatureHeadingTakesItsAxisFromItsTravel) {
   EXPECT_GT(small_car_axis_error(blob_axis_only), 8.0);
 }
 
-// A car (one feature, blob axes scattered by 10 deg) drives 0.5 px/frame along x for 50 frames, turns
-// and drives along y. The mean error of its confirmed box's axis over frames 70-110, in degrees: while
-// the chord from where it started still points back along the first leg.
+// 0.5 px/frame along x for 50 frames, then a turn and along y; blob axes scattered by 10 deg; frames
+// 70-110, while the chord from where it started still points back along the first leg.
 double turning_car_axis_error(const TrackerOptions& options) {
-  ObjectPath o;
-  o.truth_id = 1;
-  o.length = 8.0;
-  o.width = 3.0;
-  o.feature_count = 1;
-  o.ground_centre = [](int frame) {
+  const auto path = [](int frame) {
     const double v = 0.5;
     if (frame <= 50) return cv::Point2d(200 + v * (frame - 1), 200);
     return cv::Point2d(200 + v * 49, 200 + v * (frame - 50));
   };
-  SceneOptions blobs;
-  blobs.region_angle_noise_deg = 10.0;
-  SyntheticScene scene({o}, drifting_camera(), blobs);
-  Tracker tracker(options);
-  double error = 0.0;
-  int boxes = 0;
-  for (int k = 1; k <= 110; ++k) {
-    const SyntheticFrame f = scene.next();
-    const TrackList out = tracker.process(f.motion, f.segmentation);
-    if (k < 70) continue;
-    for (const auto& t : out.tracks) {
-      if (t.state != TrackState::Confirmed) continue;
-      error += std::abs(axis_angle_difference_deg(long_axis_deg(t.box), long_axis_deg(f.truth[0].box)));
-      ++boxes;
-    }
-  }
-  return boxes > 0 ? error / boxes : 90.0;
+  return one_feature_car_axis_error(path, 10.0, options, 70, 110);
 }
 
 TEST(TrackerScenario, AfterABendTheTravelHeadingWaitsForTheTrackToAgree) {
