@@ -4,6 +4,8 @@
 #include <cmath>
 #include <set>
 
+#include "vector_angles.hpp"
+
 namespace uavmot::tracking {
 namespace {
 
@@ -69,10 +71,8 @@ bool similar_motion(const cv::Vec2d& v, const cv::Vec2d& reference, const Tracke
   const double tolerance = std::max(options.feature_motion_abs_tolerance, options.feature_motion_rel_tolerance * ref_speed);
   if (cv::norm(v - reference) > tolerance) return false;
   if (ref_speed < options.feature_min_speed_for_direction) return true;
-  const double speed = cv::norm(v);
-  if (speed <= 0.0) return false;
-  const double cos_angle = std::clamp(v.dot(reference) / (speed * ref_speed), -1.0, 1.0);
-  return std::acos(cos_angle) * 180.0 / M_PI <= options.feature_direction_tolerance_deg;
+  if (cv::norm(v) <= 0.0) return false;
+  return angle_between_deg(v, reference) <= options.feature_direction_tolerance_deg;
 }
 
 cv::Point2d centre_from_feature(const OrientedBox& box, const FeatureLink& link, const cv::Point2d& position) {

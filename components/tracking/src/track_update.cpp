@@ -5,6 +5,7 @@
 #include <optional>
 
 #include "updater.hpp"
+#include "vector_angles.hpp"
 
 namespace uavmot::tracking {
 namespace {
@@ -19,7 +20,7 @@ std::optional<double> update_with_feature_motion(KalmanState& kalman, const std:
     kalman = update_with_velocity(kalman, *velocity, options.feature_velocity_sigma_px);
   }
   if (!(options.heading_sigma_deg > 0.0) || cv::norm(*velocity) < options.heading_min_speed_px) return std::nullopt;
-  const double heading = std::atan2((*velocity)[1], (*velocity)[0]) * 180.0 / M_PI;
+  const double heading = direction_deg(*velocity);
   kalman = update_with_heading(kalman, heading, options.heading_sigma_deg);
   return heading;
 }
@@ -34,13 +35,11 @@ std::optional<double> update_with_travel_heading(KalmanState& kalman, const Trac
   const cv::Vec2d travel(kalman.mean(kX) - record.origin.x, kalman.mean(kY) - record.origin.y);
   const double distance = cv::norm(travel);
   if (distance < options.travel_heading_min_lengths * vehicle_length_px) return std::nullopt;
-  const double heading = std::atan2(travel[1], travel[0]) * 180.0 / M_PI;
+  const double heading = direction_deg(travel);
   // After a bend the chord no longer points where the track goes: withheld while the track's own
   // velocity points more than travel_heading_max_turn_deg away, and trusted less the more they differ.
   const cv::Vec2d velocity(kalman.mean(kVx), kalman.mean(kVy));
-  const double speed = cv::norm(velocity);
-  const double turn_deg =
-      speed > 0.0 ? std::acos(std::clamp(velocity.dot(travel) / (speed * distance), -1.0, 1.0)) * 180.0 / M_PI : 0.0;
+  const double turn_deg = cv::norm(velocity) > 0.0 ? angle_between_deg(velocity, travel) : 0.0;
   if (options.travel_heading_max_turn_deg > 0.0 && turn_deg > options.travel_heading_max_turn_deg) return std::nullopt;
   // The ends of the travel are each known to about a region's position noise.
   const double sigma = std::max({options.heading_sigma_deg, turn_deg,
