@@ -68,8 +68,9 @@ def intersection_area(subject, clip):
     return area(out) if len(out) >= 3 else 0.0
 
 
-def median(values):
-    return sorted(values)[len(values) // 2]
+def quantile(ordered, q):
+    """The q-quantile of an ascending list, by its lower index (no interpolation)."""
+    return ordered[int(q * len(ordered))]
 
 
 def offset_in_vehicle_frame(box, vehicle_row, vehicle_box):
@@ -188,8 +189,8 @@ def main():
         across = sorted(abs(m[1]) for m in misplaced)
         axis = sorted(m[2] for m in misplaced)
         print(f"  similar-sized boxes on a vehicle the run missed, against it: offset along its travel median "
-              f"{median(along):+.2f} px (quartiles {along[len(along) // 4]:+.2f}, {along[3 * len(along) // 4]:+.2f}), "
-              f"across {median(across):.2f} px; axis off by a median {median(axis):.1f} deg, "
+              f"{quantile(along, 0.5):+.2f} px (quartiles {quantile(along, 0.25):+.2f}, {quantile(along, 0.75):+.2f}), "
+              f"across {quantile(across, 0.5):.2f} px; axis off by a median {quantile(axis, 0.5):.1f} deg, "
               f"more than 30 deg in {100.0 * sum(a > 30 for a in axis) / len(axis):.0f} %")
     missed = sum(missed_with_boxes.values())
     print(f"missed moving instances in frames with boxes: {missed}; with a false-alarm box on them: "
