@@ -53,28 +53,28 @@ if [ -n "$against" ] && [ -f "$work/$against/run.txt" ] && [ "$(cat "$work/$agai
   echo "validate: label '$against' was run with $(cat "$work/$against/run.txt"), this one with $this_run" >&2
   exit 2
 fi
-if [ -z "$report_only" ]; then
-[ -x "$bin" ] || { echo "validate: $bin is missing; build first (bash tools/build.sh)" >&2; exit 1; }
-mkdir -p "$work"
+if [ -z "$report_only" ]; then  # run the chain; --report only prints what is there
+  [ -x "$bin" ] || { echo "validate: $bin is missing; build first (bash tools/build.sh)" >&2; exit 1; }
+  mkdir -p "$work"
 
-# One run: simulate (cached), process, evaluate; leaves $work/<label>/<preset>-<seed>/eval.json.
-run_one() {
-  local preset=$1 seed=$2 seq="$work/seq/$1${vary:+-vary}-$2-f$frames" out="$work/$label/$1${vary:+-vary}-$2"
-  if [ ! -f "$seq/done" ]; then
-    rm -rf "$seq"
-    "$bin" sim --preset "$preset" --seed "$seed" --frames "$frames" --out "$seq" --quiet $vary >/dev/null 2>&1 && touch "$seq/done"
-  fi
-  rm -rf "$out"
-  "$bin" process "$seq" --out "$out" --quiet --log-level warn ${config:+--config "$config"} >"$out.log" 2>&1 &&
-    "$bin" eval --seq "$seq" --pred "$out/tracks.txt" --obb "$out/tracks_obb.csv" --features "$out/features.csv" \
-      --json "$out/eval.json" >/dev/null 2>>"$out.log" || echo "validate: $preset seed $seed failed (log: $out.log)" >&2
-}
-export -f run_one
-export bin work frames label config vary
-mkdir -p "$work/$label"
-echo "$this_run" > "$work/$label/run.txt"  # what --against checks
-for preset in "${presets[@]}"; do for seed in $seeds; do echo "$preset $seed"; done; done |
-  xargs -P "$jobs" -L 1 bash -c 'run_one "$0" "$1"'
+  # One run: simulate (cached), process, evaluate; leaves $work/<label>/<preset>-<seed>/eval.json.
+  run_one() {
+    local preset=$1 seed=$2 seq="$work/seq/$1${vary:+-vary}-$2-f$frames" out="$work/$label/$1${vary:+-vary}-$2"
+    if [ ! -f "$seq/done" ]; then
+      rm -rf "$seq"
+      "$bin" sim --preset "$preset" --seed "$seed" --frames "$frames" --out "$seq" --quiet $vary >/dev/null 2>&1 && touch "$seq/done"
+    fi
+    rm -rf "$out"
+    "$bin" process "$seq" --out "$out" --quiet --log-level warn ${config:+--config "$config"} >"$out.log" 2>&1 &&
+      "$bin" eval --seq "$seq" --pred "$out/tracks.txt" --obb "$out/tracks_obb.csv" --features "$out/features.csv" \
+        --json "$out/eval.json" >/dev/null 2>>"$out.log" || echo "validate: $preset seed $seed failed (log: $out.log)" >&2
+  }
+  export -f run_one
+  export bin work frames label config vary
+  mkdir -p "$work/$label"
+  echo "$this_run" > "$work/$label/run.txt"  # what --against checks
+  for preset in "${presets[@]}"; do for seed in $seeds; do echo "$preset $seed"; done; done |
+    xargs -P "$jobs" -L 1 bash -c 'run_one "$0" "$1"'
 fi
 
 python3 - "$work/$label" "$seeds" "${vary:+-vary}" "${against:+$work/$against}" "${presets[@]}" <<'PY'
