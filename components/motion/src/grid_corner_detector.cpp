@@ -5,6 +5,7 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "active_picture.hpp"
 #include "min_eigen_map.hpp"
 
 namespace uavmot::motion {
@@ -101,11 +102,11 @@ namespace {
 
 // The detection grid over `gray` with the live features bucketed: what both detectors start from.
 struct DetectionGrid {
-  DetectionGrid(cv::Size size, const std::vector<cv::Point2f>& existing, const MotionOptions& o)
+  DetectionGrid(cv::Size size, const cv::Rect& picture, const std::vector<cv::Point2f>& existing, const MotionOptions& o)
       : cell(detection_cell_size(o, size)),
         cols((size.width + cell - 1) / cell),
         rows((size.height + cell - 1) / cell),
-        usable(o.border_px, o.border_px, size.width - 2 * o.border_px, size.height - 2 * o.border_px),
+        usable(usable_area(picture.empty() ? cv::Rect(cv::Point(), size) : picture, o.border_px)),
         buckets(cols, rows, cell, o.min_distance_px) {
     for (const auto& p : existing) buckets.add(p);
   }
@@ -118,13 +119,26 @@ struct DetectionGrid {
   CellBuckets buckets;
 };
 
+// Frames an empty cell waits before it is searched again: empty_cell_retry_frames, or fewer where
+// `motion` moves the image at the cell's centre by empty_cell_retry_shift_cells cells sooner.
+int empty_cell_wait(const cv::Rect& area, int cell, const Homography& motion, const MotionOptions& o) {
+  const int wait = o.empty_cell_retry_frames;
+  if (o.empty_cell_retry_shift_cells <= 0.0 || wait <= 1) return wait;
+  const cv::Point2d centre(area.x + 0.5 * area.width, area.y + 0.5 * area.height);
+  const double shift_px = cv::norm(apply_homography(motion, centre) - centre);
+  if (!(shift_px > 0.0)) return wait;
+  const double frames = std::ceil(o.empty_cell_retry_shift_cells * cell / shift_px);
+  return frames >= wait ? wait : std::max(1, static_cast<int>(frames));
+}
+
 // Shared by both entry points; `retry_at` (may be null) holds the empty-cell back-off.
-std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
-                                         const MotionOptions& o, std::vector<int64_t>* retry_at, int64_t call) {
+std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const cv::Rect& picture,
+                                         const std::vector<cv::Point2f>& existing, const MotionOptions& o,
+                                         std::vector<int64_t>* retry_at, int64_t call, const Homography& motion) {
   std::vector<cv::Point2f> added;
   int budget = o.max_features - static_cast<int>(existing.size());
   if (budget <= 0 || gray.empty()) return added;
-  DetectionGrid grid(gray.size(), existing, o);
+  DetectionGrid grid(gray.size(), picture, existing, o);
   if (grid.empty()) return added;
   const int cols = grid.cols, rows = grid.rows;
   CellBuckets& buckets = grid.buckets;
@@ -160,7 +174,7 @@ std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const std::vector<
     if (retry_at) {
       // A cell that gave nothing (no corner, or every corner too close to a live feature) waits;
       // the wait is staggered by cell so the retries do not all land on the same frame.
-      const int wait = o.empty_cell_retry_frames;
+      const int wait = placed ? 0 : empty_cell_wait(area, grid.cell, motion, o);
       (*retry_at)[static_cast<size_t>(index)] = placed ? 0 : call + wait + (wait > 1 ? index % wait : 0);
     }
   }
@@ -170,19 +184,19 @@ std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const std::vector<
 }  // namespace
 
 std::vector<cv::Point2f> detect_missing_corners(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
-                                                const MotionOptions& o) {
-  return detect_in_cells(gray, existing, o, nullptr, 0);
+                                                const MotionOptions& o, const cv::Rect& picture) {
+  return detect_in_cells(gray, picture, existing, o, nullptr, 0, Homography::eye());
 }
 
 std::vector<cv::Point2f> detect_changed_corners(const cv::Mat& gray, const cv::Mat& changed,
                                                 const std::vector<cv::Point2f>& existing, const MotionOptions& o,
-                                                int budget, ChangeBlobs* blobs, int scale) {
+                                                int budget, ChangeBlobs* blobs, int scale, const cv::Rect& picture) {
   std::vector<cv::Point2f> added;
   if (budget <= 0 || gray.empty() || scale < 1 ||
       changed.size() != cv::Size((gray.cols + scale - 1) / scale, (gray.rows + scale - 1) / scale)) {
     return added;
   }
-  DetectionGrid grid(gray.size(), existing, o);
+  DetectionGrid grid(gray.size(), picture, existing, o);
   if (grid.empty()) return added;
   // Changed pixels per cell (within the usable area; with `blobs`, those of compact blobs only):
   // each set pixel of the mask counts the full-size pixels it covers, in one pass over the mask.
@@ -223,17 +237,18 @@ std::vector<cv::Point2f> detect_changed_corners(const cv::Mat& gray, const cv::M
 }
 
 std::vector<cv::Point2f> GridCornerDetector::detect(const cv::Mat& gray, const std::vector<cv::Point2f>& existing,
-                                                    bool continuous, double response_scale) {
+                                                    bool continuous, double response_scale, const Homography& motion,
+                                                    const cv::Rect& picture) {
   const int cell = detection_cell_size(options_, gray.size());
   const size_t cells = static_cast<size_t>(((gray.cols + cell - 1) / cell) * ((gray.rows + cell - 1) / cell));
   if (!continuous || gray.size() != size_ || retry_at_.size() != cells) {
     size_ = gray.size();
     retry_at_.assign(cells, 0);
   }
-  if (response_scale == 1.0) return detect_in_cells(gray, existing, options_, &retry_at_, calls_++);
+  if (response_scale == 1.0) return detect_in_cells(gray, picture, existing, options_, &retry_at_, calls_++, motion);
   MotionOptions scaled = options_;
   scaled.min_corner_response *= response_scale;
-  return detect_in_cells(gray, existing, scaled, &retry_at_, calls_++);
+  return detect_in_cells(gray, picture, existing, scaled, &retry_at_, calls_++, motion);
 }
 
 }  // namespace uavmot::motion

@@ -1,5 +1,7 @@
 #include "klt_tracker.hpp"
 
+#include "active_picture.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -10,6 +12,7 @@ namespace uavmot::motion {
 
 void build_pyramid(const cv::Mat& gray, const MotionOptions& o, Pyramid& pyramid) {
   pyramid.size = gray.size();
+  pyramid.picture = active_picture_area(gray, o);
   // Copies into a bordered buffer (tryReuseInputImage = false): the caller's frame buffer may be reused.
   // OpenCV refills levels that already have the right size in place, so a reused pyramid costs no
   // allocation (about 13 MB per 1080p frame, whose page faults were a visible share of the time).
@@ -46,15 +49,15 @@ void track_features(const Pyramid& previous, const Pyramid& current, const std::
   cv::calcOpticalFlowPyrLK(current.levels, previous.levels, to, back, backward_ok, error, window, o.backward_levels,
                            criteria, cv::OPTFLOW_USE_INITIAL_FLOW);
   const float max_fb2 = static_cast<float>(o.max_forward_backward_px * o.max_forward_backward_px);
-  const float lo = static_cast<float>(o.border_px);
-  const float hi_x = static_cast<float>(current.size.width - 1 - o.border_px);
-  const float hi_y = static_cast<float>(current.size.height - 1 - o.border_px);
+  const cv::Rect usable = usable_area(current.picture, o.border_px);
+  const float lo_x = static_cast<float>(usable.x), lo_y = static_cast<float>(usable.y);
+  const float hi_x = static_cast<float>(usable.br().x - 1), hi_y = static_cast<float>(usable.br().y - 1);
   for (size_t i = 0; i < from.size(); ++i) {
     if (!forward_ok[i] || !backward_ok[i]) continue;
     const cv::Point2f d = back[i] - from[i];
     if (!(d.x * d.x + d.y * d.y <= max_fb2)) continue;  // also rejects NaN
     const cv::Point2f& p = to[i];
-    if (!(p.x >= lo && p.y >= lo && p.x <= hi_x && p.y <= hi_y)) continue;
+    if (!(p.x >= lo_x && p.y >= lo_y && p.x <= hi_x && p.y <= hi_y)) continue;
     tracked[i] = 1;
     corner_strength[i] = min_eigen[i] / kLkEigenPerCornerResponse;
   }

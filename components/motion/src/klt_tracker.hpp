@@ -15,16 +15,18 @@ namespace uavmot::motion {
 struct Pyramid {
   std::vector<cv::Mat> levels;  // cv::buildOpticalFlowPyramid layout (image, derivatives, ...)
   cv::Size size;
+  cv::Rect picture;  // the image inside its black bands (active_picture.hpp)
   bool empty() const { return levels.empty(); }
 };
 
-// Builds the pyramid of `gray` into `pyramid`, reusing its buffers when the size matches.
+// Builds the pyramid of `gray` into `pyramid`, reusing its buffers when the size matches, and finds
+// its picture area.
 void build_pyramid(const cv::Mat& gray, const MotionOptions& options, Pyramid& pyramid);
 
 // Tracks `from` (in `previous`) into `current`, starting at `guess`, on `levels` pyramid levels above
 // full resolution (at most the pyramids'). `tracked[i]` is set where the
 // forward track converged, the backward track returns within max_forward_backward_px and the
-// result lies border_px inside the image. `corner_strength[i]` is the minimum eigenvalue of the
+// result lies border_px inside `current`'s picture area. `corner_strength[i]` is the minimum eigenvalue of the
 // point's LK window in `previous`, in min_corner_response's units (cv::cornerMinEigenVal's).
 void track_features(const Pyramid& previous, const Pyramid& current, const std::vector<cv::Point2f>& from,
                     const std::vector<cv::Point2f>& guess, int levels, const MotionOptions& options,

@@ -437,10 +437,12 @@ void MotionEstimator::Impl::detect_new_features(const cv::Mat& gray, const Pyram
                                       : changed_pixels(previous_.levels[0], gray, last_motion_, options_);
     const int scale = half_size ? 2 : 1;
     ChangeBlobs blobs(changed, options_.change_max_extent_lengths * car_length_px, scale);
-    found = detect_changed_corners(gray, changed, existing, options_, options_.change_seed_features, &blobs, scale);
+    found = detect_changed_corners(gray, changed, existing, options_, options_.change_seed_features, &blobs, scale,
+                                   current.picture);
     existing.insert(existing.end(), found.begin(), found.end());
   }
-  const std::vector<cv::Point2f> grid = detector_.detect(gray, existing, continuous, response_scale_);
+  const std::vector<cv::Point2f> grid =
+      detector_.detect(gray, existing, continuous, response_scale_, last_motion_, current.picture);
   found.insert(found.end(), grid.begin(), grid.end());
   existing.insert(existing.end(), grid.begin(), grid.end());
   // Too few corners above the response to hold the homography on the ground (on `fastcam`, 30-110
@@ -450,7 +452,7 @@ void MotionEstimator::Impl::detect_new_features(const cv::Mat& gray, const Pyram
       static_cast<double>(existing.size()) < options_.sparse_features_fraction * options_.max_features) {
     MotionOptions weaker = options_;
     weaker.min_corner_response *= options_.sparse_response_factor * response_scale_;
-    const std::vector<cv::Point2f> weak = detect_missing_corners(gray, existing, weaker);
+    const std::vector<cv::Point2f> weak = detect_missing_corners(gray, existing, weaker, current.picture);
     found.insert(found.end(), weak.begin(), weak.end());
   }
   for (const auto& p : found) {

@@ -59,7 +59,9 @@ void validate(const MotionOptions& o) {
   require(o.corner_block_size >= 3 && o.corner_block_size % 2 == 1, "corner_block_size must be odd and >= 3");
   require(o.min_corner_response >= 0.0, "min_corner_response must be >= 0");
   require(o.border_px >= 0, "border_px must be >= 0");
+  require(o.blank_band_max_grey >= 0.0 && o.blank_band_max_grey <= 63.0, "blank_band_max_grey must be in [0, 63]");
   require(o.empty_cell_retry_frames >= 1, "empty_cell_retry_frames must be >= 1");
+  require(o.empty_cell_retry_shift_cells >= 0.0, "empty_cell_retry_shift_cells must be >= 0");
   require(o.sparse_features_fraction >= 0.0 && o.sparse_features_fraction <= 1.0, "sparse_features_fraction must be in [0, 1]");
   require(o.sparse_response_factor >= 0.0 && o.sparse_response_factor <= 1.0, "sparse_response_factor must be in [0, 1]");
   require(o.lk_window_px == 0 || (o.lk_window_px >= 5 && o.lk_window_px % 2 == 1),

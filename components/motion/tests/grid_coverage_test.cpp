@@ -42,5 +42,35 @@ TEST(GridCoverage, AShortBudgetFillsTheEmptyEdgesFirst) {
   EXPECT_EQ(in_strips, 300) << "new corners in the empty right/bottom strips";
 }
 
+// A cell that gave no corner waits empty_cell_retry_frames frames, unless the camera moves new
+// ground into it sooner: at a cell's width per frame (`fastcam`) a 4-frame wait left the vehicles
+// entering the view unseen for up to 7 frames.
+TEST(GridCoverage, AnEmptyCellIsSearchedAgainOnceTheCameraHasMovedNewGroundIn) {
+  const cv::Size size(320, 240);
+  const cv::Mat flat(size, CV_8UC1, cv::Scalar(90));
+  cv::Mat textured(size, CV_8UC1);
+  cv::RNG rng(11);
+  rng.fill(textured, cv::RNG::UNIFORM, 0, 256);
+  MotionOptions o;
+  o.cell_size_px = 40;
+  o.empty_cell_retry_frames = 4;
+  o.empty_cell_retry_shift_cells = 1.0;
+  const Homography still = Homography::eye();
+  const Homography fast(1, 0, 36, 0, 1, 30, 0, 0, 1);  // 46.9 px per frame: more than a cell
+  const Homography slow(1, 0, 10, 0, 1, 0, 0, 0, 1);   // 10 px per frame: 4 frames for a cell
+
+  const auto corners_next_frame = [&](const Homography& motion, const MotionOptions& options) {
+    GridCornerDetector detector(options);
+    EXPECT_TRUE(detector.detect(flat, {}, true, 1.0, motion).empty());  // every cell empty, waiting
+    return detector.detect(textured, {}, true, 1.0, motion).size();
+  };
+  EXPECT_EQ(corners_next_frame(still, o), 0u);
+  EXPECT_EQ(corners_next_frame(slow, o), 0u);
+  EXPECT_EQ(corners_next_frame(fast, o), static_cast<size_t>((320 / 40) * (240 / 40)));
+  MotionOptions frames_only = o;
+  frames_only.empty_cell_retry_shift_cells = 0.0;
+  EXPECT_EQ(corners_next_frame(fast, frames_only), 0u);
+}
+
 }  // namespace
 }  // namespace uavmot::motion

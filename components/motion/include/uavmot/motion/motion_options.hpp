@@ -28,7 +28,15 @@ struct MotionOptions {
   // corner threshold (noise on a weak corner, an edge it slides along) does not start moving. 0 = off.
   double faded_corner_ratio = 0.5;
   int border_px = 6;                // features this close to the image border are not used
+  // ... nor this close to a black band at the image's edge (analogue capture, letterboxing): lines
+  // from an edge inward with mean grey at most this (and no pixel above 4 x this) are not picture,
+  // at most an eighth of each side (active_picture.hpp). 0 = the whole image is picture.
+  double blank_band_max_grey = 12.0;
   int empty_cell_retry_frames = 4;  // a cell that gave no new corner waits this many frames (staggered)
+  // ... or fewer: only until the camera has moved the image at the cell by this many cells (at its
+  // present rate), since the cell then shows new ground. A fast camera (`fastcam`, a cell's width
+  // per frame) uncovers vehicles that a 4-frame wait left unseen. 0 = the frame count only.
+  double empty_cell_retry_shift_cells = 1.0;
   // A frame left with fewer than sparse_features_fraction x max_features live features (blur from
   // a fast camera over fields or water) cannot hold the homography on the ground: every cell that
   // lacks features is searched again at sparse_response_factor x min_corner_response.
@@ -191,7 +199,9 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("contrast_min_scale", o.contrast_min_scale, Range<double>{0.0, 1.0});
   visit("faded_corner_ratio", o.faded_corner_ratio, Range<double>{0.0, 10.0});
   visit("border_px", o.border_px, Range<int>{0, 256});
+  visit("blank_band_max_grey", o.blank_band_max_grey, Range<double>{0.0, 63.0});
   visit("empty_cell_retry_frames", o.empty_cell_retry_frames, Range<int>{1, 1000});
+  visit("empty_cell_retry_shift_cells", o.empty_cell_retry_shift_cells, Range<double>{0.0, 1000.0});
   visit("sparse_features_fraction", o.sparse_features_fraction, Range<double>{0.0, 1.0});
   visit("sparse_response_factor", o.sparse_response_factor, Range<double>{0.0, 1.0});
   visit("change_seed_features", o.change_seed_features, Range<int>{0, 100000});
