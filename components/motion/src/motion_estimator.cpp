@@ -366,6 +366,13 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
         ++stats_.structure_patch_holds;
       }
     }
+    // A centre that is a line along its motion cannot show that motion: its window's car drags it.
+    if (o.aperture_ratio > 0.0 && std::hypot(decided[k].velocity[0], decided[k].velocity[1]) >= candidate_speed) {
+      if (centre_gradient_along(current.levels[0], f.position, decided[k].velocity, o) < o.aperture_ratio) {
+        decided[k].velocity = cv::Vec2d(0.0, 0.0);
+        ++stats_.aperture_holds;
+      }
+    }
     // In a low-contrast frame a corner far below the threshold (noise on a weak corner, an edge it
     // slides along) cannot place itself to the precision the test needs: it does not start moving.
     if (response_scale_ < 1.0 && !f.classifier.moving() && f.corner_strength < faded_corner_threshold) {
@@ -701,12 +708,15 @@ const MotionOptions& MotionEstimator::options() const { return impl_->options();
 const MotionStats& MotionEstimator::stats() const { return impl_->stats(); }
 
 std::string describe_structure(const MotionStats& stats) {
+  const std::string aperture =
+      "; " + std::to_string(stats.aperture_holds) + " feature-frames held still on a line along their motion (aperture)";
   if (stats.structure_frames == 0) {
-    return "no 3-D structure found (parallax steps idle in all " + std::to_string(stats.decided_frames) + " frames)";
+    return "no 3-D structure found (parallax steps idle in all " + std::to_string(stats.decided_frames) + " frames)" +
+           aperture;
   }
   return "3-D structure (parallax) found in " + std::to_string(stats.structure_frames) + " of " +
          std::to_string(stats.decided_frames) + " frames; " + std::to_string(stats.structure_patch_holds) +
-         " feature-frames held still by their pixels (structure patch)";
+         " feature-frames held still by their pixels (structure patch)" + aperture;
 }
 
 }  // namespace uavmot::motion

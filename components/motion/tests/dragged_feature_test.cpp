@@ -67,5 +67,26 @@ TEST(DraggedFeature, ARatioOfZeroTurnsTheCheckOff) {
   EXPECT_FALSE(centre_follows_background(frame(0), frame(1), from, from + kCamera + kVehicle, camera_step_back(), off));
 }
 
+// A lane marking beside a car: the car in the feature's LK window drags it along the marking, and
+// its centre, a line along that motion, matches either way. The share of its gradient along the
+// motion says so; a corner's and a blob's do not.
+TEST(DraggedFeature, ACentreThatIsALineAlongItsMotionCannotShowIt) {
+  cv::Mat road(40, 60, CV_8UC1, cv::Scalar(80));
+  road.rowRange(19, 22).setTo(200);                       // a marking along x, 3 px wide
+  cv::rectangle(road, cv::Rect(40, 5, 12, 8), cv::Scalar(30), cv::FILLED);  // a dark car: corners
+  const MotionOptions o;
+  const cv::Point2f on_marking(20.0f, 20.0f), car_corner(40.0f, 5.0f), flat(20.0f, 32.0f);
+  const double aperture = 0.1;  // motion.aperture_ratio on real FMV (docs/motion.md)
+  EXPECT_LT(centre_gradient_along(road, on_marking, {0.5, 0.0}, o), 0.01);
+  EXPECT_LT(centre_gradient_along(road, on_marking, {0.5, 0.1}, o), aperture);
+  EXPECT_GT(centre_gradient_along(road, on_marking, {0.0, 0.5}, o), 0.99);
+  const double corner = centre_gradient_along(road, car_corner, {0.5, 0.0}, o);
+  EXPECT_GT(corner, 0.3);
+  EXPECT_LT(corner, 0.7);
+  EXPECT_EQ(centre_gradient_along(road, flat, {0.5, 0.0}, o), 1.0);         // no gradient: nothing to say
+  EXPECT_EQ(centre_gradient_along(road, on_marking, {0.0, 0.0}, o), 1.0);   // no motion
+  EXPECT_EQ(centre_gradient_along(road, cv::Point2f(1.0f, 20.0f), {0.5, 0.0}, o), 1.0);  // at the edge
+}
+
 }  // namespace
 }  // namespace uavmot::motion

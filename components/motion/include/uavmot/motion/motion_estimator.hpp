@@ -36,15 +36,17 @@ class PreparedFrame {
 // What an estimator did since it was made (diagnostics for logs; not part of the saved state and
 // not cleared by reset()): the frames whose feature velocities were decided, those of them in which
 // the parallax fit found 3-D structure (its epipole trusted or provisional), and the feature-frames
-// that the structure-patch step held still (docs/motion.md).
+// that the structure-patch step and the aperture check held still (docs/motion.md).
 struct MotionStats {
   int64_t decided_frames = 0;
   int64_t structure_frames = 0;
   int64_t structure_patch_holds = 0;
+  int64_t aperture_holds = 0;
 };
 
-// One line for logs: whether the frames showed 3-D structure and how much of it was held still
-// (the in-process chain and the motion node say the same).
+// One line for logs: whether the frames showed 3-D structure and how much of it was held still,
+// and how many feature-frames on lines along their motion were (the in-process chain and the
+// motion node say the same).
 std::string describe_structure(const MotionStats& stats);
 
 class MotionEstimator {

@@ -85,6 +85,12 @@ struct MotionOptions {
   double dragged_ratio = 0.5;
   int dragged_patch_radius_px = 2;     // the centre patch is (2 r + 1)^2 pixels
   double dragged_min_difference = 2.0; // RMS grey levels of the own track's mismatch below which nothing is decided
+  // A feature whose centre patch (dragged_patch_radius_px) holds less than this share of its
+  // gradient energy along its motion (a lane marking beside a car, a roof's edge: the aperture
+  // problem) does not move this frame: what moves it is the rest of its window (dragged_feature.hpp).
+  // 0 = off, the default: it also holds the side edges of uniform cars (`paper` -0.6 points), but on
+  // real FMV 0.1 removes most false boxes on structure (docs/motion.md).
+  double aperture_ratio = 0.0;
 
   // --- Frame-to-frame homography ----------------------------------------------------------
   std::string robust_method = "ransac";  // "ransac" or "magsac" (cv::findHomography)
@@ -224,6 +230,7 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("dragged_ratio", o.dragged_ratio, Range<double>{0.0, 1.0});
   visit("dragged_patch_radius_px", o.dragged_patch_radius_px, Range<int>{1, 8});
   visit("dragged_min_difference", o.dragged_min_difference, Range<double>{0.0, 255.0});
+  visit("aperture_ratio", o.aperture_ratio, Range<double>{0.0, 1.0});
   visit("robust_method", o.robust_method, Choices{{"ransac", "magsac"}});
   visit("ransac_threshold_px", o.ransac_threshold_px, Range<double>{0.1, 50.0});
   visit("ransac_max_iterations", o.ransac_max_iterations, Range<int>{10, 100000});
