@@ -79,23 +79,18 @@ TEST(RealVideoScenario, TheCarDrivingPastTheShedsIsTracked) {
   EXPECT_GE(live, 8) << "confirmed or coasting boxes moving with the car in frames 170-182";
 }
 
-TEST(RealVideoScenario, TheApertureCheckHoldsTheEdgesOfStructureAndKeepsTheCar) {
-  // motion.aperture_ratio (off by default, docs/motion.md): a feature whose centre is a line along its
-  // motion does not move. aphill_short's boxes, all on roofs and containers, went from 22 (0.46 per
-  // frame) to 4; the car on aphill 1 fps keeps its boxes.
+TEST(RealVideoScenario, TheApertureCheckHoldsTheEdgesOfStructure) {
+  // motion.aperture_ratio (docs/motion.md): a feature whose centre is a line along its motion does not
+  // move, where cars are at least aperture_min_car_px long (aphill_short's KLV gives 4.8 cm/px: 93 px).
+  // Its boxes, all on roofs and containers, go from 22 (0.46 per frame) to 4 with it.
   const std::string dir = fresh_dir("real_video_scenario_aperture");
-  const std::string config = dir + "/aperture.yaml";
-  std::ofstream(config) << "motion:\n  aperture_ratio: 0.1\n";
-  const ClipRun structure = process("aphill/aphill_short.ts", dir + "/aphill_short", config);
-  std::printf("aphill_short with the aperture check: %.2f confirmed boxes per frame\n", structure.confirmed_per_frame());
-  EXPECT_LE(structure.confirmed_per_frame(), 0.15);
-  const ClipRun car = process("aphill/aphill_240_1fps_crf32.mp4", dir + "/aphill_1fps", config);
-  int confirmed = 0;
-  for (const auto& b : car.boxes) {
-    confirmed += b.frame >= 170 && b.frame <= 182 && b.cx >= 100 && b.cx <= 210 && b.cy >= 60 && b.cy <= 180 &&
-                 b.speed_mps >= 2.0 && b.state == "confirmed";
-  }
-  EXPECT_GE(confirmed, 1) << "confirmed boxes moving with the car in frames 170-182";
+  const std::string off = dir + "/aperture_off.yaml";
+  std::ofstream(off) << "motion:\n  aperture_ratio: 0\n";
+  const double with = process("aphill/aphill_short.ts", dir + "/with").confirmed_per_frame();
+  const double without = process("aphill/aphill_short.ts", dir + "/without", off).confirmed_per_frame();
+  std::printf("aphill_short: %.2f confirmed boxes per frame, %.2f without the aperture check\n", with, without);
+  EXPECT_LE(with, 0.15);
+  EXPECT_GE(without, 0.3) << "the clip no longer needs the check: this test proves nothing";
 }
 
 }  // namespace

@@ -31,7 +31,12 @@ cv::Rect active_picture_area(const cv::Mat& gray, const MotionOptions& o) {
   while (right < max_cols && blank_line(gray.col(gray.cols - 1 - right), max_mean, max_grey)) ++right;
   while (top < max_rows && blank_line(gray.row(top), max_mean, max_grey)) ++top;
   while (bottom < max_rows && blank_line(gray.row(gray.rows - 1 - bottom), max_mean, max_grey)) ++bottom;
-  return cv::Rect(left, top, gray.cols - left - right, gray.rows - top - bottom);
+  // A band's inner edge is soft: the aphill clips' first picture column after the black is 28-64
+  // grey levels (blanking's ramp) or a ringing overshoot. Those lines are fixed in the image too.
+  constexpr int kSoftEdgePx = 2;
+  const auto past_edge = [](int band) { return band > 0 ? band + kSoftEdgePx : 0; };
+  left = past_edge(left), right = past_edge(right), top = past_edge(top), bottom = past_edge(bottom);
+  return cv::Rect(left, top, std::max(0, gray.cols - left - right), std::max(0, gray.rows - top - bottom));
 }
 
 cv::Rect usable_area(const cv::Rect& picture, int border_px) {

@@ -14,8 +14,8 @@ namespace uavmot::motion {
 
 // The rectangle of `gray` (CV_8UC1) inside its black bands: from each edge inward, the lines (rows
 // or columns) whose mean grey is at most blank_band_max_grey and whose brightest pixel is at most 4
-// times that are band; at most an eighth of the side on each edge. The whole image when
-// blank_band_max_grey is 0 or there is no band.
+// times that are band, at most an eighth of the side on each edge, and where there is a band, 2
+// lines more (its soft edge). The whole image when blank_band_max_grey is 0 or there is no band.
 cv::Rect active_picture_area(const cv::Mat& gray, const MotionOptions& options);
 
 // `picture` less `border_px` on every side (may be empty).

@@ -174,8 +174,13 @@ std::vector<cv::Point2f> detect_in_cells(const cv::Mat& gray, const cv::Rect& pi
     if (retry_at) {
       // A cell that gave nothing (no corner, or every corner too close to a live feature) waits;
       // the wait is staggered by cell so the retries do not all land on the same frame.
-      const int wait = placed ? 0 : empty_cell_wait(area, grid.cell, motion, o);
-      (*retry_at)[static_cast<size_t>(index)] = placed ? 0 : call + wait + (wait > 1 ? index % wait : 0);
+      int64_t& retry = (*retry_at)[static_cast<size_t>(index)];
+      if (placed) {
+        retry = 0;
+      } else {
+        const int wait = empty_cell_wait(area, grid.cell, motion, o);
+        retry = call + wait + (wait > 1 ? index % wait : 0);
+      }
     }
   }
   return added;

@@ -347,6 +347,8 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   const Homography current_to_previous = h.inv();
   // No feature slower than this can be significant: the patch test spends its time on the rest.
   const double candidate_speed = o.release_ratio * std::max(decision_options.min_moving_speed_px, floor_px);
+  const bool aperture_check =
+      o.aperture_ratio > 0.0 && scene_.metres_to_px(scene_.vehicle_length_m) >= o.aperture_min_car_px;
   for (size_t k = 0; k < survivors.size(); ++k) {
     const LiveFeature& f = survivors[k];
     if (f.velocity.available) {
@@ -367,7 +369,7 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
       }
     }
     // A centre that is a line along its motion cannot show that motion: its window's car drags it.
-    if (o.aperture_ratio > 0.0 && std::hypot(decided[k].velocity[0], decided[k].velocity[1]) >= candidate_speed) {
+    if (aperture_check && std::hypot(decided[k].velocity[0], decided[k].velocity[1]) >= candidate_speed) {
       if (centre_gradient_along(current.levels[0], f.position, decided[k].velocity, o) < o.aperture_ratio) {
         decided[k].velocity = cv::Vec2d(0.0, 0.0);
         ++stats_.aperture_holds;

@@ -29,7 +29,8 @@ TEST(ActivePicture, TheBlackBandsAtTheEdgesAreNotPicture) {
   cv::RNG(5).fill(textured, cv::RNG::UNIFORM, 40, 200);
   const MotionOptions o;
   EXPECT_EQ(active_picture_area(textured, o), cv::Rect(0, 0, 360, 240));
-  EXPECT_EQ(active_picture_area(with_bands(textured, 4, 3, 1), o), cv::Rect(4, 0, 353, 239));
+  // The bands, and 2 lines of soft edge past each.
+  EXPECT_EQ(active_picture_area(with_bands(textured, 4, 3, 1), o), cv::Rect(6, 0, 349, 237));
 
   // Dark picture is still picture: night ground at grey 5-30, and one bright pixel in a dark column.
   cv::Mat dark(240, 360, CV_8UC1);
@@ -37,10 +38,10 @@ TEST(ActivePicture, TheBlackBandsAtTheEdgesAreNotPicture) {
   EXPECT_EQ(active_picture_area(dark, o), cv::Rect(0, 0, 360, 240));
   cv::Mat lit = with_bands(textured, 4, 3, 1);
   lit.at<uchar>(100, 1) = 200;
-  EXPECT_EQ(active_picture_area(lit, o).x, 1);
+  EXPECT_EQ(active_picture_area(lit, o).x, 3);
 
   // A black frame: at most an eighth of each side is band. Off: the whole image.
-  EXPECT_EQ(active_picture_area(cv::Mat(240, 360, CV_8UC1, cv::Scalar(0)), o), cv::Rect(45, 30, 270, 180));
+  EXPECT_EQ(active_picture_area(cv::Mat(240, 360, CV_8UC1, cv::Scalar(0)), o), cv::Rect(47, 32, 266, 176));
   MotionOptions off;
   off.blank_band_max_grey = 0.0;
   EXPECT_EQ(active_picture_area(with_bands(textured, 4, 3, 1), off), cv::Rect(0, 0, 360, 240));

@@ -88,9 +88,12 @@ struct MotionOptions {
   // A feature whose centre patch (dragged_patch_radius_px) holds less than this share of its
   // gradient energy along its motion (a lane marking beside a car, a roof's edge: the aperture
   // problem) does not move this frame: what moves it is the rest of its window (dragged_feature.hpp).
-  // 0 = off, the default: it also holds the side edges of uniform cars (`paper` -0.6 points), but on
-  // real FMV 0.1 removes most false boxes on structure (docs/motion.md).
-  double aperture_ratio = 0.0;
+  // 0 = off. Only where a car (SceneInfo) is at least aperture_min_car_px long: a car a few LK windows
+  // long shows corners besides its sides, while a 13 px uniform car may show nothing but its side
+  // edges (`paper` -0.6 points with the check everywhere; on the 5 cm/px aphill FMV, false boxes on
+  // roofs 22 -> 4). 0 = at any size.
+  double aperture_ratio = 0.1;
+  double aperture_min_car_px = 40.0;
 
   // --- Frame-to-frame homography ----------------------------------------------------------
   std::string robust_method = "ransac";  // "ransac" or "magsac" (cv::findHomography)
@@ -231,6 +234,7 @@ void for_each_motion_option(Options& o, Visit&& visit) {
   visit("dragged_patch_radius_px", o.dragged_patch_radius_px, Range<int>{1, 8});
   visit("dragged_min_difference", o.dragged_min_difference, Range<double>{0.0, 255.0});
   visit("aperture_ratio", o.aperture_ratio, Range<double>{0.0, 1.0});
+  visit("aperture_min_car_px", o.aperture_min_car_px, Range<double>{0.0, 100000.0});
   visit("robust_method", o.robust_method, Choices{{"ransac", "magsac"}});
   visit("ransac_threshold_px", o.ransac_threshold_px, Range<double>{0.1, 50.0});
   visit("ransac_max_iterations", o.ransac_max_iterations, Range<int>{10, 100000});
