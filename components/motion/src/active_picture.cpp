@@ -34,8 +34,9 @@ cv::Rect active_picture_area(const cv::Mat& gray, const MotionOptions& o) {
   // A band's inner edge is soft: the aphill clips' first picture column after the black is 28-64
   // grey levels (blanking's ramp) or a ringing overshoot. Those lines are fixed in the image too.
   constexpr int kSoftEdgePx = 2;
-  const auto past_edge = [](int band) { return band > 0 ? band + kSoftEdgePx : 0; };
-  left = past_edge(left), right = past_edge(right), top = past_edge(top), bottom = past_edge(bottom);
+  for (int* band : {&left, &right, &top, &bottom}) {
+    if (*band > 0) *band += kSoftEdgePx;
+  }
   return cv::Rect(left, top, std::max(0, gray.cols - left - right), std::max(0, gray.rows - top - bottom));
 }
 

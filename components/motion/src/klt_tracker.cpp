@@ -1,12 +1,12 @@
 #include "klt_tracker.hpp"
 
-#include "active_picture.hpp"
-
 #include <algorithm>
 #include <cmath>
 
 #include <opencv2/imgproc.hpp>
 #include <opencv2/video/tracking.hpp>
+
+#include "active_picture.hpp"
 
 namespace uavmot::motion {
 

@@ -368,7 +368,8 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
         ++stats_.structure_patch_holds;
       }
     }
-    // A centre that is a line along its motion cannot show that motion: its window's car drags it.
+    // A centre that is a line along its motion cannot show that motion: the rest of its window (a car
+    // beside a lane marking) moves it.
     if (aperture_check && std::hypot(decided[k].velocity[0], decided[k].velocity[1]) >= candidate_speed) {
       if (centre_gradient_along(current.levels[0], f.position, decided[k].velocity, o) < o.aperture_ratio) {
         decided[k].velocity = cv::Vec2d(0.0, 0.0);
