@@ -370,11 +370,10 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
     }
     // A centre that is a line along its motion cannot show that motion: the rest of its window (a car
     // beside a lane marking) moves it.
-    if (aperture_check && std::hypot(decided[k].velocity[0], decided[k].velocity[1]) >= candidate_speed) {
-      if (centre_gradient_along(current.levels[0], f.position, decided[k].velocity, o) < o.aperture_ratio) {
-        decided[k].velocity = cv::Vec2d(0.0, 0.0);
-        ++stats_.aperture_holds;
-      }
+    if (aperture_check && std::hypot(decided[k].velocity[0], decided[k].velocity[1]) >= candidate_speed &&
+        centre_gradient_along(current.levels[0], f.position, decided[k].velocity, o) < o.aperture_ratio) {
+      decided[k].velocity = cv::Vec2d(0.0, 0.0);
+      ++stats_.aperture_holds;
     }
     // In a low-contrast frame a corner far below the threshold (noise on a weak corner, an edge it
     // slides along) cannot place itself to the precision the test needs: it does not start moving.

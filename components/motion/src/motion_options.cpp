@@ -98,6 +98,8 @@ void validate(const MotionOptions& o) {
               o.scene_noise_factor >= 0.0 && o.scene_noise_max_px >= 0.0,
           "moving thresholds must be >= 0");
   require(o.confirm_frames >= 1, "confirm_frames must be >= 1");
+  require(o.aperture_ratio >= 0.0 && o.aperture_ratio <= 1.0, "aperture_ratio must be in [0, 1] (0 = off)");
+  require(o.aperture_min_car_px >= 0.0, "aperture_min_car_px must be >= 0");
   require(o.release_ratio >= 0.0 && o.release_ratio <= 1.0, "release_ratio must be in [0, 1]");
   require(o.creep_speed_factor > 0.0 && o.creep_speed_factor <= 1.0, "creep_speed_factor must be in (0, 1] (1 = off)");
   require(o.creep_max_drop_px >= 0.0, "creep_max_drop_px must be >= 0");

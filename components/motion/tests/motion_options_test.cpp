@@ -1,6 +1,7 @@
 #include "uavmot/motion/motion_options.hpp"
 
 #include <cstdio>
+#include <limits>
 #include <string>
 #include <type_traits>
 #include <vector>
@@ -217,6 +218,13 @@ TEST(MotionOptions, EstimatorRejectsInconsistentOptions) {
   EXPECT_THROW(MotionEstimator{o}, InputError);
   o = MotionOptions{};
   o.min_inliers = 3;
+  EXPECT_THROW(MotionEstimator{o}, InputError);
+  // Set in code, not read from YAML: a NaN would otherwise turn the check off without a word.
+  o = MotionOptions{};
+  o.aperture_ratio = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW(MotionEstimator{o}, InputError);
+  o = MotionOptions{};
+  o.blank_band_max_grey = -1.0;
   EXPECT_THROW(MotionEstimator{o}, InputError);
 }
 
