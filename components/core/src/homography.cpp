@@ -1,7 +1,11 @@
 #include "uavmot/core/homography.hpp"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
+
+#include <opencv2/core.hpp>  // Matx::inv
 
 namespace uavmot {
 
@@ -25,6 +29,26 @@ cv::Point2d apply_homography(const Homography& h, const cv::Point2d& p) {
   const double y = h(1, 0) * p.x + h(1, 1) * p.y + h(1, 2);
   const double w = h(2, 0) * p.x + h(2, 1) * p.y + h(2, 2);
   return {x / w, y / w};
+}
+
+double frames_to_cross_view(const Homography& h, cv::Size image) {
+  const cv::Point2d centre(0.5 * image.width, 0.5 * image.height);
+  const cv::Point2d moved = apply_homography(h, centre);
+  const double step_px = std::hypot(moved.x - centre.x, moved.y - centre.y);
+  const int side = std::min(image.width, image.height);
+  if (side <= 0 || !(step_px > 0.0)) return std::numeric_limits<double>::infinity();
+  return side / step_px;
+}
+
+int frames_ground_in_view(const Homography& h, const cv::Point2d& p, cv::Size image, int max_frames) {
+  const Homography back = h.inv();
+  cv::Point2d q = p;
+  for (int frames = 0; frames <= max_frames; ++frames) {
+    q = apply_homography(back, q);
+    const bool inside = q.x >= -0.5 && q.y >= -0.5 && q.x < image.width - 0.5 && q.y < image.height - 0.5;
+    if (!inside) return frames;
+  }
+  return max_frames + 1;
 }
 
 cv::Matx22d homography_jacobian(const Homography& h, const cv::Point2d& p) {

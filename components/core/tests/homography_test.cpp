@@ -51,5 +51,22 @@ TEST(Homography, TransferErrorOfPureShiftIsTheShift) {
   EXPECT_EQ(transfer_errors(identity_homography(), shifted, 640, 480, 4).size(), 16u);
 }
 
+TEST(Homography, FramesToCrossViewIsTheSmallerSideOverTheCentresStep) {
+  const Homography left_20px(1, 0, -20, 0, 1, 0, 0, 0, 1);
+  EXPECT_NEAR(frames_to_cross_view(left_20px, {800, 600}), 30.0, 1e-9);  // 600 px / 20 px per frame
+  EXPECT_TRUE(std::isinf(frames_to_cross_view(identity_homography(), {800, 600})));
+  EXPECT_TRUE(std::isinf(frames_to_cross_view(left_20px, {0, 0})));
+}
+
+TEST(Homography, GroundInViewCountsTheFramesSinceTheCameraUncoveredIt) {
+  // The image moves 20 px left per frame: new ground comes in at the right edge.
+  const Homography left_20px(1, 0, -20, 0, 1, 0, 0, 0, 1);
+  const cv::Size image(800, 600);
+  EXPECT_EQ(frames_ground_in_view(left_20px, {790, 300}, image, 8), 0);  // came in this frame
+  EXPECT_EQ(frames_ground_in_view(left_20px, {750, 300}, image, 8), 2);  // at 770 and 790 before
+  EXPECT_EQ(frames_ground_in_view(left_20px, {100, 300}, image, 8), 9);  // in view for longer
+  EXPECT_EQ(frames_ground_in_view(identity_homography(), {799, 300}, image, 8), 9);  // a still camera
+}
+
 }  // namespace
 }  // namespace uavmot

@@ -342,7 +342,11 @@ bool MotionEstimator::Impl::track_and_estimate(const Pyramid& current, MotionEst
   // One frame's velocity decides (MotionOptions::strong_motion_factor) only where it can be trusted:
   // not in a low-contrast frame, whose corners cannot place themselves well enough (lowsnr: twice
   // the false alarms), nor in one with 3-D structure, whose silhouettes slide (urban3d, oblique).
-  if (response_scale_ < 1.0 || structure_found) decision_options.strong_motion_factor = 0.0;
+  // And only under a camera fast enough that a car is in view for few frames, where one frame of
+  // latency is a share of its time in view worth that risk.
+  const bool short_view = o.strong_motion_max_view_frames <= 0.0 ||
+                          frames_to_cross_view(h, current.size) <= o.strong_motion_max_view_frames;
+  if (response_scale_ < 1.0 || structure_found || !short_view) decision_options.strong_motion_factor = 0.0;
   const double faded_corner_threshold = o.faded_corner_ratio * o.min_corner_response * response_scale_;
   const Homography current_to_previous = h.inv();
   // No feature slower than this can be significant: the patch test spends its time on the rest.

@@ -108,6 +108,7 @@ void validate(const MotionOptions& o) {
   require(o.creep_min_support >= 1, "creep_min_support must be >= 1");
   require(o.strong_motion_factor == 0.0 || o.strong_motion_factor >= 1.0,
           "strong_motion_factor must be 0 (off) or >= 1 (a multiple of the moving threshold)");
+  require(o.strong_motion_max_view_frames >= 0.0, "strong_motion_max_view_frames must be >= 0 (0 = always)");
   require(o.parallax_min_support >= 2, "parallax_min_support must be >= 2 (two lines fix an epipole)");
   require(o.parallax_min_support_fraction >= 0.0 && o.parallax_min_support_fraction <= 1.0,
           "parallax_min_support_fraction must be in [0, 1]");

@@ -101,6 +101,39 @@ TEST(IndependentMotion, SubPixelMotionFromFastCamera) {
   check_sequence("fast camera, 0.3-0.8 px/frame", sequence, 50, 0.3, 0.8);
 }
 
+// Features on moving patches decided moving at their first velocity (age 2: detected, then one
+// frame tracked), i.e. by a strong start (MotionOptions::strong_motion_factor).
+int moving_at_first_decision(double camera_speed_px, const MotionOptions& options) {
+  testing::WarpedSequence sequence(test::camera(camera_speed_px, 0.05));
+  sequence.set_patches(testing::scatter_patches(sequence, 15, 40, 0, 2.0, 3.0, 11));
+  const auto estimates = test::run(sequence, 30, options);
+  int count = 0;
+  for (const auto& e : estimates) {
+    for (const auto& f : e.features) {
+      const int patch = sequence.patch_at(static_cast<int>(e.frame_index), f.position, 2.0, 8.0);
+      count += patch >= 0 && f.age == 2 && f.moving ? 1 : 0;
+    }
+  }
+  return count;
+}
+
+TEST(IndependentMotion, OneFrameDecidesOnlyUnderACameraThatCarriesCarsOutOfViewQuickly) {
+  const MotionOptions defaults;
+  ASSERT_GT(defaults.strong_motion_factor, 0.0);
+  // 15 px/frame over 540 rows: the ground crosses the image in 36 frames, under the 60 that count.
+  const int fast = moving_at_first_decision(15.0, defaults);
+  // 3 px/frame: 180 frames; a frame of latency costs little, and one velocity does not decide.
+  const int slow = moving_at_first_decision(3.0, defaults);
+  MotionOptions always = defaults;
+  always.strong_motion_max_view_frames = 0.0;
+  const int slow_always = moving_at_first_decision(3.0, always);
+  std::printf("moving at the first decision: fast camera %d, slow camera %d, slow camera without the gate %d\n", fast,
+              slow, slow_always);
+  EXPECT_GE(fast, 10);
+  EXPECT_EQ(slow, 0);
+  EXPECT_GE(slow_always, 10);
+}
+
 TEST(IndependentMotion, VelocitySigmaIsPositiveOnceTracked) {
   const testing::WarpedSequence sequence(test::camera(3.0, 0.05));
   const auto estimates = test::run(sequence, 8);

@@ -9,7 +9,7 @@
 namespace uavmot::tracking {
 
 void record_frame(TrackRecord& track, bool region_hit, bool supported, const TrackerOptions& options,
-                  bool may_bridge_gap, double confirm_min_speed_px, bool may_confirm) {
+                  bool may_bridge_gap, double confirm_min_speed_px, bool may_confirm, bool new_ground) {
   ++track.age;
   const uint32_t window_mask = options.confirm_window >= 32 ? 0xffffffffu : ((1u << options.confirm_window) - 1u);
   track.hit_history = ((track.hit_history << 1) | (region_hit ? 1u : 0u)) & window_mask;
@@ -18,7 +18,8 @@ void record_frame(TrackRecord& track, bool region_hit, bool supported, const Tra
   if (track.state == TrackState::Tentative) {
     const int hits = std::popcount(track.hit_history);
     const bool by_features = options.confirm_hits_with_features > 0 && hits >= options.confirm_hits_with_features &&
-                             static_cast<int>(track.features.size()) >= options.confirm_min_features;
+                             static_cast<int>(track.features.size()) >=
+                                 (new_ground ? options.quick_confirm_min_features : options.confirm_min_features);
     const bool goes_somewhere = std::hypot(track.mean[kVx], track.mean[kVy]) >= confirm_min_speed_px;
     // At the border neither region hits nor linked features prove motion (see
     // TrackerOptions::confirm_border_margin_px): the track waits until it is inside.

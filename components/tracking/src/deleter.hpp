@@ -32,9 +32,12 @@ bool clear_of_border(const OrientedBox& box, const cv::Size& image, double margi
 // A tentative track is confirmed only when its estimated speed is at least `confirm_min_speed_px`
 // (px/frame; the tracker converts TrackerOptions::confirm_min_speed_mps with the scene's GSD and fps)
 // and only when `may_confirm` (the caller passes false while the box touches the image border,
-// where a static object that the camera uncovers looks like motion).
+// where a static object that the camera uncovers looks like motion). `new_ground`: the box is on ground
+// that has just come into view (TrackerOptions::quick_confirm_max_ground_frames), where fewer linked
+// features confirm.
 void record_frame(TrackRecord& track, bool region_hit, bool supported, const TrackerOptions& options,
-                  bool may_bridge_gap = true, double confirm_min_speed_px = 0.0, bool may_confirm = true);
+                  bool may_bridge_gap = true, double confirm_min_speed_px = 0.0, bool may_confirm = true,
+                  bool new_ground = false);
 
 // What happens to a live track after record_frame().
 // `in_view`: see inside_view(); a track that left the view goes dormant (confirmed) or is deleted.

@@ -107,9 +107,13 @@ class PaperLifecycle final : public Deleter {
   void age_dormant(TrackerState& state, const Homography& h) const override {
     tracking::age_dormant(state, h, options_);
   }
-  Fate judge(TrackInFrame& track, const cv::Size& image) const override {
+  Fate judge(TrackInFrame& track, const cv::Size& image, const Homography& h) const override {
+    const int max_frames = options_.quick_confirm_max_ground_frames;
+    const bool new_ground = max_frames >= 0 && image.width > 0 && image.height > 0 &&
+                            frames_ground_in_view(h, {track.posterior.cx, track.posterior.cy}, image, max_frames) <= max_frames;
     record_frame(track.record, track.region_hit, track.supported, options_, wholly_inside_view(track.posterior, image),
-                 confirm_min_speed_px_, clear_of_border(track.posterior, image, options_.confirm_border_margin_px));
+                 confirm_min_speed_px_, clear_of_border(track.posterior, image, options_.confirm_border_margin_px),
+                 new_ground);
     return decide_fate(track.record, inside_view(track.posterior, image), options_);
   }
 

@@ -95,6 +95,8 @@ const std::vector<IntField>& int_fields() {
       {"confirm_window", &TrackerOptions::confirm_window, 1, 32},
       {"confirm_hits_with_features", &TrackerOptions::confirm_hits_with_features, 0, 32},
       {"confirm_min_features", &TrackerOptions::confirm_min_features, 1, 1000},
+      {"quick_confirm_min_features", &TrackerOptions::quick_confirm_min_features, 1, 1000},
+      {"quick_confirm_max_ground_frames", &TrackerOptions::quick_confirm_max_ground_frames, -1, 1000},
       {"tentative_max_misses", &TrackerOptions::tentative_max_misses, 0, 1000},
       {"max_coast_frames", &TrackerOptions::max_coast_frames, 0, 100000},
       {"gap_frames", &TrackerOptions::gap_frames, 0, 100000},

@@ -39,6 +39,17 @@ TEST(Lifecycle, LinkedFeaturesConfirmAfterTwoHits) {
   EXPECT_EQ(u.state, TrackState::Tentative);
 }
 
+TEST(Lifecycle, OneLinkedFeatureConfirmsOnlyOnGroundThatHasJustComeIntoView) {
+  TrackerOptions o;
+  TrackRecord t = new_track();
+  t.features = {FeatureLink{1, {0, 0}, 1}};
+  TrackRecord on_new_ground = t;
+  record_frame(t, true, false, o, true, 0.0, true, false);
+  EXPECT_EQ(t.state, TrackState::Tentative);  // 2 hits, 1 feature: waits for a third hit
+  record_frame(on_new_ground, true, false, o, true, 0.0, true, true);
+  EXPECT_EQ(on_new_ground.state, TrackState::Confirmed);
+}
+
 TEST(Lifecycle, TentativeMissingTwiceIsDeleted) {
   TrackerOptions o;
   TrackRecord t = new_track();

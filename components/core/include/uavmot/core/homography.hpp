@@ -27,6 +27,16 @@ cv::Matx22d homography_jacobian(const Homography& h, const cv::Point2d& p);
 // Maps an oriented box: centre exactly, axes through the local Jacobian.
 OrientedBox transform_box(const Homography& h, const OrientedBox& box);
 
+// How many frames the camera, at this homography's rate at the image centre, takes to carry the
+// ground across the image's smaller side: how long a static point stays in view, roughly. Infinite
+// for a still camera or an empty size.
+double frames_to_cross_view(const Homography& h, cv::Size image);
+
+// For how many frames the ground at `p` has been in view, assuming the camera kept this
+// homography's motion: p carried back through h's inverse, frame by frame, until it leaves the
+// image. Counts up to max_frames; max_frames + 1 means longer (or a still camera).
+int frames_ground_in_view(const Homography& h, const cv::Point2d& p, cv::Size image, int max_frames);
+
 // Mean transfer error ||H_a(p) - H_b(p)|| over a regular grid covering width x height.
 double mean_transfer_error(const Homography& a, const Homography& b, int width, int height, int grid = 16);
 // Transfer errors on that grid (for percentiles).
