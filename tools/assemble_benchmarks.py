@@ -2,8 +2,12 @@
 """Regenerates docs/benchmarks.md from the per-area pages in docs/benchmarks/*.md.
 
 Each area keeps its own page (written by whoever measured it, with the command and date);
-this puts every figure on one page, in the order of the chain."""
+this puts every figure on one page, in the order of the chain.
+    python3 tools/assemble_benchmarks.py [--check]
+--check writes nothing and fails when docs/benchmarks.md is not what the pages make (an edit made
+to docs/benchmarks.md itself is lost at the next run)."""
 import pathlib
+import sys
 
 ORDER = ["frame_hop", "sim", "motion", "segmentation", "tracking", "process", "real_video", "live", "mcap", "record", "foxglove", "airground", "soak"]
 root = pathlib.Path(__file__).resolve().parent.parent / "docs"
@@ -32,5 +36,17 @@ for name in names:
         line = line.replace("](../images/", "](images/")
         out.append("#" + line if line.startswith("#") and not in_code else line)
     out.append("")
-(root / "benchmarks.md").write_text("\n".join(out))
+text = "\n".join(out)
+target = root / "benchmarks.md"
+if "--check" in sys.argv[1:]:
+    have = target.read_text().splitlines() if target.exists() else []
+    want = text.splitlines()
+    if have != want:
+        line = next((i for i, (a, b) in enumerate(zip(have, want)) if a != b), min(len(have), len(want)))
+        print(f"docs/benchmarks.md differs from docs/benchmarks/*.md from line {line + 1}: edit the pages, "
+              "then run python3 tools/assemble_benchmarks.py", file=sys.stderr)
+        sys.exit(1)
+    print(f"docs/benchmarks.md: {len(names)} sections, as the pages make it")
+    sys.exit(0)
+target.write_text(text)
 print(f"docs/benchmarks.md: {len(names)} sections")

@@ -125,12 +125,12 @@ TEST(ChainPaperScenario, ThreeSeedsHoldTheirCorrectRatePrecisionAndFalseAlarms) 
 struct SeedFigures {
   double correct = 0, worst_correct = 1, false_alarms = 0;
 };
-void score_seeds_1_to_3(const std::string& preset, SeedFigures& out) {
+void score_seeds_1_to_3(const std::string& preset, SeedFigures& out, int min_instances = 5000) {
   const std::vector<int> seeds = {1, 2, 3};
   for (const int seed : seeds) {
     const auto e = score_seed(seed, preset, 150);
     const auto& c = e.at("completeness");
-    ASSERT_GT(c.at("instances").get<int>(), 5000) << preset << " seed " << seed;
+    ASSERT_GT(c.at("instances").get<int>(), min_instances) << preset << " seed " << seed;
     const double rate = c.at("correct_rate").get<double>();
     const double per_frame = e.at("false_alarms").at("per_frame").get<double>();
     std::printf("%s seed %d: correct %.2f %%, %.2f false alarms per frame\n", preset.c_str(), seed, 100 * rate, per_frame);
@@ -191,6 +191,21 @@ TEST(ChainDenseScenario, ThreeSeedsOfQueuesHoldTheirCorrectRateAndFalseAlarms) {
   EXPECT_GE(f.correct, 0.82);
   EXPECT_GE(f.worst_correct, 0.78);
   EXPECT_LE(f.false_alarms, 3.0);
+}
+
+// `fastcam` (800 x 600, the camera about 21 px per frame: the ground crosses the view in 29 frames). Its misses are
+// vehicles in their first frames in view. With one velocity deciding, and one linked feature confirming, only where
+// the camera brings new ground in that quickly (docs/tracking.md, session 41: `strong_motion_max_view_frames`,
+// `quick_confirm_max_ground_frames`), seeds 1-3 at 150 frames went from 81.93 / 81.00 / 81.53 % correct, 0.83 /
+// 0.61 / 0.69 false alarms per frame (mean 81.5 %, 0.71) to 83.85 / 83.78 / 83.79 %, 0.96 / 0.62 / 0.57 (mean
+// 83.8 %, 0.72): both correct-rate bounds fail without them. Issue 18's target (>= 80 %, <= 1 false alarm per
+// frame) is met here and on the held-out seeds 100-109 (80.25 %, 0.42).
+TEST(ChainFastcamScenario, ThreeSeedsOfAFastCameraHoldTheirCorrectRateAndFalseAlarms) {
+  SeedFigures f;
+  ASSERT_NO_FATAL_FAILURE(score_seeds_1_to_3("fastcam", f, 3000));
+  EXPECT_GE(f.correct, 0.83);
+  EXPECT_GE(f.worst_correct, 0.83);
+  EXPECT_LE(f.false_alarms, 0.8);
 }
 
 }  // namespace

@@ -99,6 +99,14 @@ class PaperInitiator final : public Initiator {
   SceneInfo scene_;
 };
 
+// Whether the camera uncovered the ground under `box` at most quick_confirm_max_ground_frames
+// frames ago (its motion carried back).
+bool on_new_ground(const OrientedBox& box, const FrameInput& in, const TrackerOptions& options) {
+  const int max_frames = options.quick_confirm_max_ground_frames;
+  if (max_frames < 0 || in.image.width <= 0 || in.image.height <= 0) return false;
+  return frames_ground_in_view(in.homography, {box.cx, box.cy}, in.image, max_frames) <= max_frames;
+}
+
 // deleter: N-of-M confirmation, coasting, gaps, dormancy.
 class PaperLifecycle final : public Deleter {
  public:
@@ -107,13 +115,11 @@ class PaperLifecycle final : public Deleter {
   void age_dormant(TrackerState& state, const Homography& h) const override {
     tracking::age_dormant(state, h, options_);
   }
-  Fate judge(TrackInFrame& track, const cv::Size& image, const Homography& h) const override {
-    const int max_frames = options_.quick_confirm_max_ground_frames;
-    const bool new_ground = max_frames >= 0 && image.width > 0 && image.height > 0 &&
-                            frames_ground_in_view(h, {track.posterior.cx, track.posterior.cy}, image, max_frames) <= max_frames;
+  Fate judge(TrackInFrame& track, const FrameInput& in) const override {
+    const cv::Size& image = in.image;
     record_frame(track.record, track.region_hit, track.supported, options_, wholly_inside_view(track.posterior, image),
                  confirm_min_speed_px_, clear_of_border(track.posterior, image, options_.confirm_border_margin_px),
-                 new_ground);
+                 on_new_ground(track.posterior, in, options_));
     return decide_fate(track.record, inside_view(track.posterior, image), options_);
   }
 

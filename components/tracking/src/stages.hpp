@@ -72,9 +72,8 @@ class Deleter {
   virtual ~Deleter() = default;
   // Carries dormant tracks through the homography and deletes the expired ones.
   virtual void age_dormant(TrackerState& state, const Homography& h) const = 0;
-  // Records the frame in the track's history and decides what happens to it; `h` is the frame's
-  // camera motion (how long the ground stays in view).
-  virtual Fate judge(TrackInFrame& track, const cv::Size& image, const Homography& h) const = 0;
+  // Records the frame in the track's history and decides what happens to it.
+  virtual Fate judge(TrackInFrame& track, const FrameInput& in) const = 0;
 };
 
 struct TrackerStages {

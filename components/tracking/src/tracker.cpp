@@ -80,7 +80,7 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
   std::vector<OrientedBox> live_boxes;
   for (auto& t : tracks) {
     if (t.absorbed) continue;  // a piece of another track's object
-    switch (stage.deleter->judge(t, in.image, in.homography)) {
+    switch (stage.deleter->judge(t, in)) {
       case Fate::Keep:
         live_boxes.push_back(t.posterior);
         state_.tracks.push_back(std::move(t.record));

@@ -115,10 +115,10 @@ struct TrackerOptions {
   int confirm_hits_with_features = 2;
   int confirm_min_features = 2;
   // ... and fewer linked features, this many, where the ground under the box came into view at most
-  // quick_confirm_max_ground_frames ago (the camera's motion carried back): a vehicle that has just
-  // come into view has had no time for a second feature, and under a fast camera it is in view for
-  // few frames. Elsewhere one feature more is worth the wait: everywhere, it raised false alarms on
-  // every preset (docs/tracking.md). quick_confirm_max_ground_frames < 0 = never.
+  // quick_confirm_max_ground_frames ago, the camera's motion carried back: a vehicle the camera has
+  // just uncovered has had no time for a second feature, and under a fast camera it is in view for
+  // few frames. Elsewhere one feature more is worth the wait: everywhere, and in the tracker's
+  // first frames, it raised false alarms (docs/tracking.md). < 0 = never.
   int quick_confirm_min_features = 1;
   int quick_confirm_max_ground_frames = 8;
   // A tentative track confirms only once its estimated ground speed reaches this: roofs, trees and
