@@ -7,6 +7,8 @@
 
 #include <opencv2/core.hpp>  // Matx::inv
 
+#include "uavmot/core/image_bounds.hpp"
+
 namespace uavmot {
 
 Homography identity_homography() { return Homography::eye(); }
@@ -31,10 +33,13 @@ cv::Point2d apply_homography(const Homography& h, const cv::Point2d& p) {
   return {x / w, y / w};
 }
 
+double image_step_px(const Homography& h, const cv::Point2d& p) {
+  const cv::Point2d moved = apply_homography(h, p);
+  return std::hypot(moved.x - p.x, moved.y - p.y);
+}
+
 double frames_to_cross_view(const Homography& h, cv::Size image) {
-  const cv::Point2d centre(0.5 * image.width, 0.5 * image.height);
-  const cv::Point2d moved = apply_homography(h, centre);
-  const double step_px = std::hypot(moved.x - centre.x, moved.y - centre.y);
+  const double step_px = image_step_px(h, {0.5 * image.width, 0.5 * image.height});
   const int side = std::min(image.width, image.height);
   if (side <= 0 || !(step_px > 0.0)) return std::numeric_limits<double>::infinity();
   return side / step_px;
@@ -45,8 +50,7 @@ int frames_ground_in_view(const Homography& h, const cv::Point2d& p, cv::Size im
   cv::Point2d q = p;
   for (int frames = 0; frames <= max_frames; ++frames) {
     q = apply_homography(back, q);
-    const bool inside = q.x >= -0.5 && q.y >= -0.5 && q.x < image.width - 0.5 && q.y < image.height - 0.5;
-    if (!inside) return frames;
+    if (!inside_image(q, image)) return frames;
   }
   return max_frames + 1;
 }

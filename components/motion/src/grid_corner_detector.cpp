@@ -124,8 +124,7 @@ struct DetectionGrid {
 int empty_cell_wait(const cv::Rect& area, int cell, const Homography& motion, const MotionOptions& o) {
   const int wait = o.empty_cell_retry_frames;
   if (o.empty_cell_retry_shift_cells <= 0.0 || wait <= 1) return wait;
-  const cv::Point2d centre(area.x + 0.5 * area.width, area.y + 0.5 * area.height);
-  const double shift_px = cv::norm(apply_homography(motion, centre) - centre);
+  const double shift_px = image_step_px(motion, {area.x + 0.5 * area.width, area.y + 0.5 * area.height});
   if (!(shift_px > 0.0)) return wait;
   const double frames = std::ceil(o.empty_cell_retry_shift_cells * cell / shift_px);
   return frames >= wait ? wait : std::max(1, static_cast<int>(frames));

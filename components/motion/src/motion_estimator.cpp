@@ -68,9 +68,7 @@ TrackedFeature to_output(const LiveFeature& f) {
 // A feature as the parallax filter sees it, with the ground's image motion at its position under
 // this frame's homography (what bounds the parallax of any static point there).
 ParallaxSample parallax_sample(const LiveFeature& f, const Homography& h) {
-  const cv::Point2d p(f.position);
-  const cv::Point2d moved = apply_homography(h, p);
-  return {f.position, f.velocity.velocity, f.velocity.sigma, std::hypot(moved.x - p.x, moved.y - p.y)};
+  return {f.position, f.velocity.velocity, f.velocity.sigma, image_step_px(h, cv::Point2d(f.position))};
 }
 
 }  // namespace

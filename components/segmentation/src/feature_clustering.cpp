@@ -6,6 +6,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "uavmot/core/image_bounds.hpp"
+
 namespace uavmot::segmentation {
 namespace {
 
@@ -94,9 +96,7 @@ std::vector<FeatureCluster> cluster_moving_features(const std::vector<TrackedFea
       ++local.skipped_non_finite;
       continue;
     }
-    if (image_size.width > 0 && image_size.height > 0 &&
-        (f.position.x < -0.5 || f.position.y < -0.5 || f.position.x >= image_size.width - 0.5 ||
-         f.position.y >= image_size.height - 0.5)) {
+    if (image_size.width > 0 && image_size.height > 0 && !inside_image(f.position, image_size)) {
       ++local.skipped_outside;
       continue;
     }

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "kalman_model.hpp"
+#include "uavmot/core/image_bounds.hpp"
 
 namespace uavmot::tracking {
 
@@ -33,23 +34,18 @@ void record_frame(TrackRecord& track, bool region_hit, bool supported, const Tra
 
 namespace {
 
-// Pixel centres run from 0 to size - 1, so the image covers [-0.5, size - 0.5).
-bool inside_image(double x, double y, const cv::Size& image) {
-  return x >= -0.5 && y >= -0.5 && x < image.width - 0.5 && y < image.height - 0.5;
-}
-
 bool image_size_known(const cv::Size& image) { return image.width > 0 && image.height > 0; }
 
 }  // namespace
 
 bool inside_view(const OrientedBox& box, const cv::Size& image) {
-  return !image_size_known(image) || inside_image(box.cx, box.cy, image);
+  return !image_size_known(image) || inside_image({box.cx, box.cy}, image);
 }
 
 bool wholly_inside_view(const OrientedBox& box, const cv::Size& image) {
   if (!image_size_known(image)) return true;
   for (const auto& c : box_corners(box)) {
-    if (!inside_image(c.x, c.y, image)) return false;
+    if (!inside_image(c, image)) return false;
   }
   return true;
 }
@@ -57,7 +53,7 @@ bool wholly_inside_view(const OrientedBox& box, const cv::Size& image) {
 bool clear_of_border(const OrientedBox& box, const cv::Size& image, double margin_px) {
   if (!image_size_known(image)) return true;
   for (const auto& c : box_corners(box)) {
-    if (!inside_image(c.x - margin_px, c.y - margin_px, image) || !inside_image(c.x + margin_px, c.y + margin_px, image)) return false;
+    if (!inside_image(c - cv::Point2d(margin_px, margin_px), image) || !inside_image(c + cv::Point2d(margin_px, margin_px), image)) return false;
   }
   return true;
 }

@@ -27,6 +27,9 @@ cv::Matx22d homography_jacobian(const Homography& h, const cv::Point2d& p);
 // Maps an oriented box: centre exactly, axes through the local Jacobian.
 OrientedBox transform_box(const Homography& h, const OrientedBox& box);
 
+// How far the homography moves the point p (px): the ground's image motion there.
+double image_step_px(const Homography& h, const cv::Point2d& p);
+
 // How many frames the camera, at this homography's rate at the image centre, takes to carry the
 // ground across the image's smaller side: how long a static point stays in view, roughly. Infinite
 // for a still camera or an empty size.
