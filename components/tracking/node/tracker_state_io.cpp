@@ -15,9 +15,10 @@
 namespace uavmot::tracking {
 namespace {
 
-// Version 2 added TrackRecordState.origin; version 1 files (no mark) are refused, not misread.
+// Version 2 added TrackRecordState.origin, version 3 travel_from; files of other versions are
+// refused, not misread (version 1 files have no mark).
 constexpr char kFileMagic[8] = {'U', 'T', 'R', 'K', 'S', 'T', 'A', 'T'};
-constexpr uint32_t kFileVersion = 2;
+constexpr uint32_t kFileVersion = 3;
 constexpr size_t kFileHeaderBytes = sizeof kFileMagic + sizeof(uint32_t);
 
 msg::TrackRecordState record_to_msg(const TrackRecord& r) {
@@ -39,6 +40,7 @@ msg::TrackRecordState record_to_msg(const TrackRecord& r) {
   box.angle_deg(r.anchor_box.angle_deg);
   m.anchor_box(box);
   m.origin({r.origin.x, r.origin.y});
+  m.travel_from({r.travel_from.x, r.travel_from.y});
   for (const auto& f : r.features) {
     msg::FeatureLinkState fm;
     fm.feature_id(f.feature_id);
@@ -73,6 +75,11 @@ std::optional<TrackRecord> record_from_msg(const msg::TrackRecordState& m, std::
     return std::nullopt;
   }
   r.origin = {m.origin()[0], m.origin()[1]};
+  if (!std::isfinite(m.travel_from()[0]) || !std::isfinite(m.travel_from()[1])) {
+    why = "track " + std::to_string(m.id()) + " has a non-finite travel_from";
+    return std::nullopt;
+  }
+  r.travel_from = {m.travel_from()[0], m.travel_from()[1]};
   for (const auto& fm : m.features()) {
     if (!std::isfinite(fm.u()) || !std::isfinite(fm.v())) {
       why = "track " + std::to_string(m.id()) + " has a non-finite feature link";

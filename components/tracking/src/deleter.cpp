@@ -75,6 +75,7 @@ void age_dormant(TrackerState& state, const Homography& h, const TrackerOptions&
   for (auto& track : state.dormant) {
     track.anchor_box = transform_box(h, track.anchor_box);
     track.origin = apply_homography(h, track.origin);
+    track.travel_from = apply_homography(h, track.travel_from);
     ++track.frames_dormant;
   }
   std::erase_if(state.dormant, [&](const TrackRecord& t) {

@@ -126,6 +126,7 @@ void initiate_tracks(const std::vector<int>& free_regions, const FrameInput& inp
       track.hits = 0;
       track.hit_history = 0;
       track.origin = {region.cx, region.cy};
+      track.travel_from = track.origin;
     }
     ++track.age;
     ++track.hits;

@@ -25,14 +25,14 @@ std::optional<double> update_with_feature_motion(KalmanState& kalman, const std:
   return heading;
 }
 
-// Without a feature heading, a track that has travelled far enough from where it started names its
-// own: the direction of that travel (a vehicle drives along its length). A small or slow car often
-// has one feature, or none fast enough, for a feature heading; its blob's own axis is then noise
-// (docs/tracking.md, session 39).
+// Without a feature heading, a track that has travelled far enough names its own: the direction of
+// its recent travel (a vehicle drives along its length). A small or slow car often has one feature,
+// or none fast enough, for a feature heading; its blob's own axis is then noise (docs/tracking.md,
+// sessions 39 and 42).
 std::optional<double> update_with_travel_heading(KalmanState& kalman, const TrackRecord& record,
                                                 const TrackerOptions& options, double vehicle_length_px) {
   if (!(options.travel_heading_min_lengths > 0.0) || !(options.heading_sigma_deg > 0.0)) return std::nullopt;
-  const cv::Vec2d travel(kalman.mean(kX) - record.origin.x, kalman.mean(kY) - record.origin.y);
+  const cv::Vec2d travel(kalman.mean(kX) - record.travel_from.x, kalman.mean(kY) - record.travel_from.y);
   const double distance = cv::norm(travel);
   if (distance < options.travel_heading_min_lengths * vehicle_length_px) return std::nullopt;
   const double heading = direction_deg(travel);
@@ -48,11 +48,21 @@ std::optional<double> update_with_travel_heading(KalmanState& kalman, const Trac
   return heading;
 }
 
+// Pulls the start of the track's recent travel after it, to at most `max_px` behind its centre.
+void follow_travel(TrackRecord& record, const KalmanState& kalman, double max_px) {
+  if (!(max_px > 0.0)) return;
+  const cv::Point2d centre(kalman.mean(kX), kalman.mean(kY));
+  const cv::Point2d behind = record.travel_from - centre;
+  const double distance = std::hypot(behind.x, behind.y);
+  if (distance > max_px) record.travel_from = centre + behind * (max_px / distance);
+}
+
 }  // namespace
 
 void update_track(TrackInFrame& track, const FeatureIndex& features, const TrackerOptions& options,
                   double vehicle_length_px) {
   const TrackMeasurement& m = track.measurement;
+  follow_travel(track.record, track.kalman, options.travel_heading_max_lengths * vehicle_length_px);
   const std::vector<const TrackedFeature*> linked = linked_features(track.record, features);
   std::optional<double> heading = update_with_feature_motion(track.kalman, linked, options);
   if (m.kind == MeasurementKind::Box) {

@@ -43,6 +43,7 @@ std::vector<TrackInFrame> predict_tracks(std::vector<TrackRecord> records, const
     if (!is_finite(prior)) continue;  // cannot happen with validated input; drop rather than spread NaN
     r.anchor_box = transform_box(h, r.anchor_box);
     r.origin = apply_homography(h, r.origin);
+    r.travel_from = apply_homography(h, r.travel_from);
     tracks.push_back(predicted_track(std::move(r), prior));
   }
   return tracks;
@@ -110,7 +111,9 @@ TrackList Tracker::process(const MotionEstimate& motion, const SegmentationResul
 void Tracker::restore(const TrackerState& state) {
   auto check = [](const TrackRecord& t) {
     const KalmanState k = to_kalman(t);
-    if (!is_finite(k) || t.id == 0 || !std::isfinite(t.origin.x) || !std::isfinite(t.origin.y)) throw InvalidArgument("tracker state: track " + std::to_string(t.id) + " is not valid");
+    const bool points_finite = std::isfinite(t.origin.x) && std::isfinite(t.origin.y) &&
+                               std::isfinite(t.travel_from.x) && std::isfinite(t.travel_from.y);
+    if (!is_finite(k) || t.id == 0 || !points_finite) throw InvalidArgument("tracker state: track " + std::to_string(t.id) + " is not valid");
   };
   // Counters the next frame increments: one at its limit (a corrupt or hostile sample) cannot go
   // on; frames_processed would overflow (found by fuzzing) and next_id would hand out id 0.

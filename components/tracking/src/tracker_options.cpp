@@ -66,6 +66,7 @@ const std::vector<DoubleField>& double_fields() {
       {"heading_sigma_deg", &TrackerOptions::heading_sigma_deg, 0.0, 180.0},
       {"travel_heading_min_lengths", &TrackerOptions::travel_heading_min_lengths, 0.0, 1000.0},
       {"travel_heading_max_turn_deg", &TrackerOptions::travel_heading_max_turn_deg, 0.0, 180.0},
+      {"travel_heading_max_lengths", &TrackerOptions::travel_heading_max_lengths, 0.0, 1000.0},
       {"feature_span_margin_px", &TrackerOptions::feature_span_margin_px, -1.0, 100.0},
       {"link_min_length_factor", &TrackerOptions::link_min_length_factor, 0.0, 10.0},
       {"stopped_link_min_travel_lengths", &TrackerOptions::stopped_link_min_travel_lengths, 0.0, 1000.0},

@@ -126,6 +126,11 @@ TEST(TrackerRobustness, RestoreRejectsInconsistentState) {
   st.next_id = 6;
   st.tracks[0].mean[0] = kNaN;
   EXPECT_THROW(tracker.restore(st), InvalidArgument);
+  st.tracks[0].mean[0] = 0.0;
+  st.tracks[0].mean[4] = st.tracks[0].mean[5] = 5.0;  // a box, not a point
+  ASSERT_NO_THROW(tracker.restore(st));
+  st.tracks[0].travel_from.y = kNaN;
+  EXPECT_THROW(tracker.restore(st), InvalidArgument);
 }
 
 // Counters at their limit would overflow on the next frame (a fuzzed sample had frames_processed

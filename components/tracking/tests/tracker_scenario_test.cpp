@@ -390,7 +390,7 @@ double small_car_axis_error(const TrackerOptions& options) {
 }
 
 TEST(TrackerScenario, ASmallCarWithoutFeatureHeadingTakesItsAxisFromItsTravel) {
-  // Measured: 0.7 deg with the travel heading, 11.1 deg without.
+  // Measured: 0.6 deg with the travel heading, 11.1 deg without.
   EXPECT_LT(small_car_axis_error(TrackerOptions{}), 3.0);
   TrackerOptions blob_axis_only;
   blob_axis_only.travel_heading_min_lengths = 0.0;
@@ -398,7 +398,7 @@ TEST(TrackerScenario, ASmallCarWithoutFeatureHeadingTakesItsAxisFromItsTravel) {
 }
 
 // 0.5 px/frame along x for 50 frames, then a turn and along y; blob axes scattered by 10 deg; frames
-// 70-110, while the chord from where it started still points back along the first leg.
+// 70-110, while the travel still points back along the first leg.
 double turning_car_axis_error(const TrackerOptions& options) {
   const auto path = [](int frame) {
     const double v = 0.5;
@@ -409,12 +409,40 @@ double turning_car_axis_error(const TrackerOptions& options) {
 }
 
 TEST(TrackerScenario, AfterABendTheTravelHeadingWaitsForTheTrackToAgree) {
-  // Measured: 7.8 deg with the guard, 40.7 without it; 2.0 with no travel heading at all (the chord
+  // Measured: 14.5 deg with the guard, 39.5 without it; 2.0 with no travel heading at all (the travel
   // still leans back along the first leg for a while: the price of the heading on straight roads).
-  EXPECT_LT(turning_car_axis_error(TrackerOptions{}), 12.0);
+  // With the travel from where the track started (travel_heading_max_lengths 0), 7.8: that chord
+  // turns more slowly, so the guard holds it back for longer (docs/tracking.md, session 42).
+  EXPECT_LT(turning_car_axis_error(TrackerOptions{}), 20.0);
   TrackerOptions no_guard;
   no_guard.travel_heading_max_turn_deg = 0.0;
   EXPECT_GT(turning_car_axis_error(no_guard), 30.0);
+}
+
+// 0.5 px/frame, heading 0 deg for 40 frames, turning steadily to -40 deg by frame 120, then straight;
+// blob axes scattered by 10 deg; frames 140-220, on the straight after the bend.
+double gently_turning_car_axis_error(const TrackerOptions& options) {
+  const auto heading_deg = [](int frame) { return -40.0 * std::clamp((frame - 40) / 80.0, 0.0, 1.0); };
+  const auto path = [heading_deg](int frame) {
+    cv::Point2d p(150, 300);
+    for (int k = 2; k <= frame; ++k) {
+      const double a = heading_deg(k) * M_PI / 180.0;
+      p += 0.5 * cv::Point2d(std::cos(a), std::sin(a));
+    }
+    return p;
+  };
+  return one_feature_car_axis_error(path, 10.0, options, 140, 220);
+}
+
+TEST(TrackerScenario, AfterAGentleBendTheTravelHeadingFollowsTheRoad) {
+  // The turn never reaches travel_heading_max_turn_deg, so the guard above does not act. Measured:
+  // 6.4 deg with the travel over the last two vehicle lengths, 17.3 with the travel from where the
+  // track started (half the bend behind it for ever); 2.9 with no travel heading at all (blob axes
+  // good to 10 deg need none).
+  EXPECT_LT(gently_turning_car_axis_error(TrackerOptions{}), 9.0);
+  TrackerOptions from_the_start;
+  from_the_start.travel_heading_max_lengths = 0.0;
+  EXPECT_GT(gently_turning_car_axis_error(from_the_start), 14.0);
 }
 
 // A car that drives 40 frames at 1.5 px/frame (13 m/s), brakes to a halt over 60 frames (5.5 m/s^2)

@@ -7,6 +7,7 @@
 
 #include <cstring>
 #include <filesystem>
+#include <limits>
 #include <fstream>
 #include <string>
 #include <vector>
@@ -34,6 +35,7 @@ TrackerState a_state() {
   r.hits = 28;
   r.anchor_box = {10.0, 20.0, 3.0, 12.0, 15.0};
   r.origin = {-35.25, 4.5};
+  r.travel_from = {-20.5, 6.75};
   r.features.push_back({99, {0.25, -0.1}, 12});
   state.tracks.push_back(r);
   return state;
@@ -53,7 +55,7 @@ class TrackerStateFileTest : public ::testing::Test {
   std::string dir_;
 };
 
-TEST_F(TrackerStateFileTest, WhatIsSavedComesBackOriginIncluded) {
+TEST_F(TrackerStateFileTest, WhatIsSavedComesBackOriginAndTravelIncluded) {
   save_snapshot(to_msg(a_state(), "uav1", 41), file("s.cdr"));
   const auto snapshot = load_snapshot(file("s.cdr"));
   ASSERT_TRUE(snapshot);
@@ -63,6 +65,7 @@ TEST_F(TrackerStateFileTest, WhatIsSavedComesBackOriginIncluded) {
   ASSERT_TRUE(state) << why;
   ASSERT_EQ(state->tracks.size(), 1u);
   EXPECT_EQ(state->tracks[0].origin, cv::Point2d(-35.25, 4.5));
+  EXPECT_EQ(state->tracks[0].travel_from, cv::Point2d(-20.5, 6.75));
   EXPECT_EQ(state->tracks[0].features.at(0).frames_linked, 12u);
   EXPECT_FALSE(load_snapshot(file("absent.cdr")));
 }
@@ -76,16 +79,19 @@ TEST_F(TrackerStateFileTest, AnEarlierUnmarkedFileOrAnotherVersionIsRefused) {
   } catch (const InputError& e) {
     EXPECT_NE(std::string(e.what()).find("no 'UTRKSTAT' mark"), std::string::npos) << e.what();
   }
-  save_snapshot(snapshot, file("later.cdr"));
-  std::ifstream in(file("later.cdr"), std::ios::binary);
+  save_snapshot(snapshot, file("saved.cdr"));
+  std::ifstream in(file("saved.cdr"), std::ios::binary);
   std::vector<uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  bytes[8] = 3;  // the version's low byte
-  write(file("later.cdr"), bytes);
-  try {
-    load_snapshot(file("later.cdr"));
-    ADD_FAILURE() << "a version 3 file was read";
-  } catch (const InputError& e) {
-    EXPECT_NE(std::string(e.what()).find("format version 3; this build reads version 2"), std::string::npos) << e.what();
+  for (const uint8_t other : {2, 4}) {  // before travel_from, and a later one
+    bytes[8] = other;  // the version's low byte
+    write(file("other.cdr"), bytes);
+    try {
+      load_snapshot(file("other.cdr"));
+      ADD_FAILURE() << "a version " << int(other) << " file was read";
+    } catch (const InputError& e) {
+      const std::string expected = "format version " + std::to_string(other) + "; this build reads version 3";
+      EXPECT_NE(std::string(e.what()).find(expected), std::string::npos) << e.what();
+    }
   }
 }
 
@@ -95,6 +101,10 @@ TEST_F(TrackerStateFileTest, ANonFiniteOriginIsRefused) {
   std::string why;
   EXPECT_FALSE(from_msg(to_msg(state, "uav1", 41), why));
   EXPECT_NE(why.find("non-finite origin"), std::string::npos) << why;
+  state = a_state();
+  state.tracks[0].travel_from.y = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(from_msg(to_msg(state, "uav1", 41), why));
+  EXPECT_NE(why.find("non-finite travel_from"), std::string::npos) << why;
 }
 
 }  // namespace

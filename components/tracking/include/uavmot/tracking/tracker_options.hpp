@@ -69,6 +69,10 @@ struct TrackerOptions {
   // (it has turned since). 0 disables each.
   double travel_heading_min_lengths = 0.5;
   double travel_heading_max_turn_deg = 45.0;
+  // The travel is the most recent this many x the vehicle length: the point it is measured from
+  // trails the track on a leash of that length, so after a bend the heading turns with the road
+  // (a chord from the first region would point across it for ever). 0: from the first region.
+  double travel_heading_max_lengths = 2.0;
   // With a known heading, a region is lengthened to reach this far (px) beyond the linked features'
   // ends, up to SceneInfo's vehicle length: a road-grey car's blob may be its windscreen alone, while
   // its features sit on both window bars. Negative disables.

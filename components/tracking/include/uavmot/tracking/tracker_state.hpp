@@ -38,6 +38,9 @@ struct TrackRecord {
   // The centre of the track's first region, carried by the homographies like anchor_box: how far the
   // object has gone since (a parked car that moved for a moment has not gone a car length).
   cv::Point2d origin;
+  // Where the track's recent travel is measured from: the origin, pulled after the track so it stays
+  // at most TrackerOptions::travel_heading_max_lengths behind (its heading after a bend).
+  cv::Point2d travel_from;
   std::vector<FeatureLink> features;
 };
 
