@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "kalman_model.hpp"
+#include "record_places.hpp"
 #include "uavmot/core/image_bounds.hpp"
 
 namespace uavmot::tracking {
@@ -73,9 +74,7 @@ Fate decide_fate(const TrackRecord& track, bool in_view, const TrackerOptions& o
 
 void age_dormant(TrackerState& state, const Homography& h, const TrackerOptions& options) {
   for (auto& track : state.dormant) {
-    track.anchor_box = transform_box(h, track.anchor_box);
-    track.origin = apply_homography(h, track.origin);
-    track.travel_from = apply_homography(h, track.travel_from);
+    carry_places(track, h);
     ++track.frames_dormant;
   }
   std::erase_if(state.dormant, [&](const TrackRecord& t) {

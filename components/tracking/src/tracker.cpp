@@ -7,6 +7,7 @@
 
 #include "frame_input.hpp"
 #include "kalman_model.hpp"
+#include "record_places.hpp"
 #include "stages.hpp"
 #include "uavmot/core/error.hpp"
 
@@ -34,16 +35,14 @@ Track to_output(const TrackRecord& record) {
 
 bool by_id(const TrackRecord& a, const TrackRecord& b) { return a.id < b.id; }
 
-// Every live track predicted into this frame; its anchor and origin are carried through the homography too.
+// Every live track predicted into this frame; its remembered places are carried through the homography too.
 std::vector<TrackInFrame> predict_tracks(std::vector<TrackRecord> records, const Homography& h, const MotionModel& model) {
   std::vector<TrackInFrame> tracks;
   tracks.reserve(records.size());
   for (auto& r : records) {
     const KalmanState prior = model.predict(to_kalman(r), h);
     if (!is_finite(prior)) continue;  // cannot happen with validated input; drop rather than spread NaN
-    r.anchor_box = transform_box(h, r.anchor_box);
-    r.origin = apply_homography(h, r.origin);
-    r.travel_from = apply_homography(h, r.travel_from);
+    carry_places(r, h);
     tracks.push_back(predicted_track(std::move(r), prior));
   }
   return tracks;
