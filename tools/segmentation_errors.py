@@ -15,6 +15,7 @@ import collections
 import sys
 
 from false_alarm_places import belongs, read_run
+from miss_causes import MIN_VISIBILITY
 
 
 def rounded(box):
@@ -35,7 +36,7 @@ def main():
     over = collections.defaultdict(list)  # vehicle id -> [(frame, vehicle box, [(track id, box)])]
     under = []
     for frame in sorted(truth):
-        moving = [(r, box, poly) for r, box, poly in truth[frame] if r["moving"] == "1" and float(r["visibility"]) >= 0.5]
+        moving = [(r, box, poly) for r, box, poly in truth[frame] if r["moving"] == "1" and float(r["visibility"]) >= MIN_VISIBILITY]
         tracks = confirmed.get(frame, [])
         for r, box, poly in moving:
             owners = [(int(t["id"]), tbox) for t, tbox, tpoly in tracks if belongs(tpoly, poly)]
