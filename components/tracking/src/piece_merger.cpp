@@ -63,6 +63,22 @@ bool senior(const TrackRecord& a, const TrackRecord& b) { return a.hits != b.hit
 
 }  // namespace
 
+bool pieces_move_as_one_body(const OrientedBox& a, const cv::Vec2d& motion_a, const OrientedBox& b,
+                             const cv::Vec2d& motion_b, const TrackerOptions& options, const SceneInfo& scene) {
+  const cv::Vec2d relative = motion_a - motion_b;
+  const cv::Vec2d line(b.cx - a.cx, b.cy - a.cy);
+  const double distance = cv::norm(line);
+  if (!(distance > 1e-9)) return scene.speed_mps(cv::norm(relative)) <= options.piece_max_speed_difference_mps;
+  // Two points of one rigid body keep their distance: their relative velocity lies across the line
+  // between them, |omega| x distance for a body turning at omega. A car closing in on the one ahead
+  // moves along that line.
+  const double along = relative.dot(line) / distance;
+  const double across = (relative[1] * line[0] - relative[0] * line[1]) / distance;
+  const double turn_allowance_mps = options.piece_max_turn_rate_dps * CV_PI / 180.0 * scene.px_to_metres(distance);
+  return scene.speed_mps(std::abs(along)) <= options.piece_max_speed_difference_mps &&
+         scene.speed_mps(std::abs(across)) <= options.piece_max_speed_difference_mps + turn_allowance_mps;
+}
+
 bool are_pieces_of_one_object(const OrientedBox& a, const cv::Vec2d& motion_a, const OrientedBox& b,
                               const cv::Vec2d& motion_b, const TrackerOptions& options, const SceneInfo& scene) {
   if (!(options.piece_max_gap_m > 0.0)) return false;
@@ -70,8 +86,7 @@ bool are_pieces_of_one_object(const OrientedBox& a, const cv::Vec2d& motion_a, c
       scene.speed_mps(cv::norm(motion_b)) < options.piece_min_speed_mps) {
     return false;
   }
-  // The pieces of one vehicle move as one; a car closing in on the one ahead does not.
-  if (scene.speed_mps(cv::norm(motion_a - motion_b)) > options.piece_max_speed_difference_mps) return false;
+  if (!pieces_move_as_one_body(a, motion_a, b, motion_b, options, scene)) return false;
   if (!(cv::norm(motion_a + motion_b) > 1e-9)) return false;  // no direction of travel (min speed 0)
   const PiecePair p = measure(a, b, motion_a + motion_b);
   // Each piece is one vehicle wide: a box over two cars side by side is no piece of anything.

@@ -5,6 +5,8 @@
 
 #include <opencv2/imgproc.hpp>
 
+#include "updater.hpp"
+
 namespace uavmot::tracking {
 
 bool region_motion(const OrientedBox& box, const FeatureIndex& features, cv::Vec2d& velocity) {
@@ -21,7 +23,22 @@ ObjectLimits object_limits(const TrackerOptions& options, const SceneInfo& scene
                                     scene.metres_to_px(scene.vehicle_length_m) * options.single_object_size_factor);
   limits.largest_object = cv::Size2d(scene.metres_to_px(options.max_object_width_m),
                                      scene.metres_to_px(scene.vehicle_length_m) * options.max_object_length_factor);
+  limits.widest_region = scene.metres_to_px(options.max_region_width_m);
   return limits;
+}
+
+OrientedBox within_lane_of(const OrientedBox& region, const OrientedBox& predicted) {
+  const OrientedBox along = box_along_heading(region, predicted.angle_deg);
+  const double a = predicted.angle_deg * CV_PI / 180.0;
+  const cv::Point2d axis(std::cos(a), std::sin(a)), normal(-std::sin(a), std::cos(a));
+  const cv::Point2d offset(along.cx - predicted.cx, along.cy - predicted.cy);
+  const double u = offset.dot(axis), v = offset.dot(normal);
+  double lo = std::max(v - along.width / 2.0, -predicted.width / 2.0);
+  double hi = std::min(v + along.width / 2.0, predicted.width / 2.0);
+  if (hi <= lo) lo = -predicted.width / 2.0, hi = predicted.width / 2.0;
+  const double mid = (lo + hi) / 2.0;
+  return OrientedBox{predicted.cx + u * axis.x + mid * normal.x, predicted.cy + u * axis.y + mid * normal.y, hi - lo,
+                     along.length, along.angle_deg};
 }
 
 OrientedBox enclosing_box(const std::vector<OrientedBox>& boxes) {
@@ -60,15 +77,15 @@ bool fits_inside(const OrientedBox& candidate, const OrientedBox& predicted, dou
   return candidate.length <= big && candidate.width <= std::max(small, 1.0) + 1.0;
 }
 
-// Split handling for one track and the regions only it validates.
+// Split handling for one track and the regions only it validates (`own`, with their boxes).
 TrackMeasurement split_measurement(const TrackInFrame& track, const std::vector<int>& own,
-                                   const std::vector<double>& overlaps, const std::vector<OrientedBox>& regions,
+                                   const std::vector<OrientedBox>& boxes, const std::vector<double>& overlaps,
                                    const FeatureIndex& features, const TrackerOptions& options,
                                    const cv::Size2d& largest_object_px, std::vector<int>& leftovers) {
   TrackMeasurement m;
   m.kind = MeasurementKind::Box;
   if (own.size() == 1) {
-    m.box = regions[static_cast<size_t>(own[0])];
+    m.box = boxes[0];
     return m;
   }
   // Primary region: the one the track's features follow; ties go to the larger overlap.
@@ -76,7 +93,7 @@ TrackMeasurement split_measurement(const TrackInFrame& track, const std::vector<
   int best_links = -1;
   double best_overlap = -1.0;
   for (size_t i = 0; i < own.size(); ++i) {
-    const int links = linked_features_inside(track.record, regions[static_cast<size_t>(own[i])], features);
+    const int links = linked_features_inside(track.record, boxes[i], features);
     if (links > best_links || (links == best_links && overlaps[i] > best_overlap)) {
       primary = i;
       best_links = links;
@@ -84,11 +101,11 @@ TrackMeasurement split_measurement(const TrackInFrame& track, const std::vector<
     }
   }
   cv::Vec2d primary_motion;
-  const bool primary_known = region_motion(regions[static_cast<size_t>(own[primary])], features, primary_motion);
-  std::vector<OrientedBox> parts = {regions[static_cast<size_t>(own[primary])]};
+  const bool primary_known = region_motion(boxes[primary], features, primary_motion);
+  std::vector<OrientedBox> parts = {boxes[primary]};
   for (size_t i = 0; i < own.size(); ++i) {
     if (i == primary) continue;
-    const OrientedBox& candidate = regions[static_cast<size_t>(own[i])];
+    const OrientedBox& candidate = boxes[i];
     cv::Vec2d motion;
     const bool known = region_motion(candidate, features, motion);
     const bool same_motion = !(known && primary_known) || similar_motion(motion, primary_motion, options);
@@ -201,7 +218,14 @@ SplitMergeResult resolve_split_merge(const RegionAssociation& gating, const std:
       }
     }
     if (!own.empty()) {
-      result.measurements[t] = split_measurement(tracks[t], own, own_overlaps, regions, features, options,
+      // A region wider than any vehicle holds this track's object and an untracked neighbour.
+      std::vector<OrientedBox> own_boxes;
+      for (const int r : own) {
+        const OrientedBox& region = regions[static_cast<size_t>(r)];
+        const bool too_wide = limits.widest_region > 0.0 && std::min(region.width, region.length) > limits.widest_region;
+        own_boxes.push_back(too_wide ? within_lane_of(region, tracks[t].predicted) : region);
+      }
+      result.measurements[t] = split_measurement(tracks[t], own, own_boxes, own_overlaps, features, options,
                                                  limits.largest_object, leftovers);
       result.measurements[t].size_jump = result.measurements[t].size_jump || keepers[t];
       continue;

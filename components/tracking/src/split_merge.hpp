@@ -3,6 +3,8 @@
 //  - one region for one track: the region is the measurement;
 //  - one region for several tracks (merge, e.g. overtaking): each track's centre is reconstructed from
 //    its own linked features (median), its size is kept from the prediction;
+//  - a track's own region wider than any vehicle (`widest_region`) holds it and an untracked
+//    neighbour: the track takes the part in its own lane (`within_lane_of`);
 //  - several regions for one track (split): regions that move alike and together fit the object are
 //    fragments of it and are merged into one box, no larger than `largest_object_px` (width across,
 //    height along; zero = no limit); otherwise the track keeps the region its features follow and
@@ -24,10 +26,11 @@ namespace uavmot::tracking {
 struct ObjectLimits {
   cv::Size2d single_object;  // a shared region within this holds one object tracked in pieces
   cv::Size2d largest_object;  // no box assembled from fragments (or pieces of a vehicle) is larger
+  double widest_region = 0.0;  // a region wider than this holds more than one object (zero = no limit)
 };
 
 // single_object_size_factor x the scene's vehicle; max_object_width_m x max_object_length_factor
-// vehicle lengths.
+// vehicle lengths; max_region_width_m.
 ObjectLimits object_limits(const TrackerOptions& options, const SceneInfo& scene);
 
 struct SplitMergeResult {
@@ -38,6 +41,10 @@ struct SplitMergeResult {
 
 // Median velocity of the moving features inside `box`; false when it holds none.
 bool region_motion(const OrientedBox& box, const FeatureIndex& features, cv::Vec2d& velocity);
+
+// The part of `region` in the lane of `predicted`: `region` read along the predicted axis, cut across
+// to the predicted box's width (where they overlap; the predicted span where they do not).
+OrientedBox within_lane_of(const OrientedBox& region, const OrientedBox& predicted);
 
 // The smallest oriented box around all of `boxes`.
 OrientedBox enclosing_box(const std::vector<OrientedBox>& boxes);

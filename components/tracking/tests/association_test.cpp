@@ -35,8 +35,11 @@ std::vector<TrackInFrame> in_frame(const std::vector<TrackRecord>& records, cons
   return tracks;
 }
 
-// The limits split/merge handling gets from the scene: `single` object, `largest` object (zero: none).
-ObjectLimits limits(cv::Size2d single = {}, cv::Size2d largest = {}) { return ObjectLimits{single, largest}; }
+// The limits split/merge handling gets from the scene: `single` object, `largest` object, `widest`
+// region (zero: none).
+ObjectLimits limits(cv::Size2d single = {}, cv::Size2d largest = {}, double widest = 0.0) {
+  return ObjectLimits{single, largest, widest};
+}
 
 TEST(RegionAssociation, SmallOverlapValidatesNoOverlapDoesNot) {
   const OrientedBox track{100, 100, 5, 15, 0};
@@ -216,6 +219,34 @@ TEST(SplitMerge, FragmentsNeverMakeABoxLargerThanTheLargestObject) {
   ASSERT_EQ(bounded.measurements[0].kind, MeasurementKind::Box);
   EXPECT_LT(bounded.measurements[0].box.width, 6.5);
   EXPECT_EQ(bounded.free_regions.size(), 1u);
+}
+
+TEST(SplitMerge, ARegionWiderThanAnyVehicleIsCutToTheTracksLane) {
+  // `paper` seed 103: a truck's track (7 x 25 px along x) sees one blob over the truck and an untracked
+  // car beside it, 15 px wide. Taken whole it grows the track over both (one box on two vehicles).
+  std::vector<TrackRecord> tracks(1);
+  const std::vector<OrientedBox> predicted = {{100, 100, 7, 25, 0}};
+  const FeatureIndex none({});
+  const std::vector<OrientedBox> regions = {{101, 104, 15, 26, 0}};  // the car on the track's +y side
+  const RegionAssociation a = associate_regions(regions, predicted, 0.05);
+  const SplitMergeResult open =
+      resolve_split_merge(a, regions, in_frame(tracks, predicted, velocities_of(1)), none, TrackerOptions{}, limits());
+  EXPECT_EQ(open.measurements[0].box, regions[0]);
+  const SplitMergeResult r = resolve_split_merge(a, regions, in_frame(tracks, predicted, velocities_of(1)), none,
+                                                 TrackerOptions{}, limits({}, {}, 11.4));
+  ASSERT_EQ(r.measurements[0].kind, MeasurementKind::Box);
+  const OrientedBox& box = r.measurements[0].box;
+  EXPECT_NEAR(box.width, 7.0, 1e-9);   // the blob spans y 96.5-111.5; the lane 96.5-103.5
+  EXPECT_NEAR(box.cy, 100.0, 1e-9);
+  EXPECT_NEAR(box.cx, 101.0, 1e-9);    // along the lane, where the blob is
+  EXPECT_NEAR(box.length, 26.0, 1e-9);
+  EXPECT_TRUE(r.free_regions.empty());
+  // A truck's own blob, one vehicle wide, is its box as it is.
+  const std::vector<OrientedBox> own = {{100, 100, 8, 26, 0}};
+  const SplitMergeResult kept = resolve_split_merge(associate_regions(own, predicted, 0.05), own,
+                                                    in_frame(tracks, predicted, velocities_of(1)), none,
+                                                    TrackerOptions{}, limits({}, {}, 11.4));
+  EXPECT_EQ(kept.measurements[0].box, own[0]);
 }
 
 TEST(SplitMerge, FragmentsWithTheSameMotionAreOneMeasurement) {

@@ -76,6 +76,23 @@ TEST(PieceMerger, DifferentMotionOrTooLongIsNotOneObject) {
   EXPECT_FALSE(are_pieces_of_one_object(long_a, {1.0, 0.0}, long_b, {1.0, 0.0}, kOptions, kScene));
 }
 
+TEST(PieceMerger, TheEndsOfATruckInABendArePiecesACarClosingInIsNot) {
+  // `paper` seed 106's 11 m truck turning at 16 deg/s: its rear piece's features move 0.18 px/frame
+  // (1.6 m/s) across the line to its cab's, 16 px ahead, and 0.01 along it. A rigid body turning
+  // keeps its points' distances, so that difference lies across the line.
+  const OrientedBox rear = along_x(100.0, 12.0, 8.0), cab = along_x(114.5, 15.0, 8.0);  // centres 16 px apart
+  const cv::Vec2d rear_motion(0.78, 0.06), cab_motion(0.78, -0.12);
+  EXPECT_TRUE(pieces_move_as_one_body(rear, rear_motion, cab, cab_motion, kOptions, kScene));
+  EXPECT_TRUE(are_pieces_of_one_object(rear, rear_motion, cab, cab_motion, kOptions, kScene));
+  TrackerOptions no_turn = kOptions;
+  no_turn.piece_max_turn_rate_dps = 0.0;
+  EXPECT_FALSE(are_pieces_of_one_object(rear, rear_motion, cab, cab_motion, no_turn, kScene));
+  // The same speed difference along the line is a car closing in on the one ahead.
+  EXPECT_FALSE(pieces_move_as_one_body(rear, {0.96, 0.0}, cab, {0.78, 0.0}, kOptions, kScene));
+  // A turn faster than any vehicle's is no turn: 0.6 px/frame across 16 px is 54 deg/s.
+  EXPECT_FALSE(pieces_move_as_one_body(rear, {0.78, 0.3}, cab, {0.78, -0.3}, kOptions, kScene));
+}
+
 TEST(PieceMerger, DisabledByAZeroGap) {
   TrackerOptions off = kOptions;
   off.piece_max_gap_m = 0.0;

@@ -94,9 +94,14 @@ struct TrackerOptions {
   // region; a 10.5 m truck's cab and trailer boxes overstate it, together 14 m).
   double max_object_width_m = 4.0;
   double max_object_length_factor = 3.3;
+  // A track's own region wider than this (its shorter side) is more than one vehicle: a truck and an
+  // untracked car beside it in one blob. The track takes only its own lane of it: the region read
+  // along the track's axis, cut across to the track's predicted width. 0 disables.
+  double max_region_width_m = 4.0;
   // Two tracks driving nose to tail are pieces of one long vehicle (truck cab and trailer) when the
   // features on both move at piece_min_speed_mps or faster with velocities within
-  // piece_max_speed_difference_mps, one is behind the other along the direction of travel (centres
+  // piece_max_speed_difference_mps (along the line between them; across it, plus the turn rate
+  // below), one is behind the other along the direction of travel (centres
   // at most piece_max_lateral_m apart across it), the gap between their boxes is at most
   // piece_max_gap_m, and each and both together fit the largest object above (piece_merger.hpp).
   // piece_max_gap_m = 0 disables. 2 m: a truck's uniform trailer roof leaves the segmentation blobs
@@ -104,6 +109,9 @@ struct TrackerOptions {
   double piece_max_gap_m = 2.0;
   double piece_min_speed_mps = 1.0;
   double piece_max_speed_difference_mps = 1.0;
+  // ... across the line between the pieces, plus this turn rate x their distance: a truck in a bend
+  // turns as one body, so its ends' velocities differ across it (16 deg/s on `paper` seed 106).
+  double piece_max_turn_rate_dps = 20.0;
   double piece_max_lateral_m = 0.9;
 
   // --- Initiation (initiator) ---------------------------------------------------------------
