@@ -1,6 +1,5 @@
 // Pieces of one long vehicle (piece_merger.hpp): the geometric rule, and the tracker ending with one
 // track on a truck that segmentation reports as cab and trailer.
-#include <cmath>
 #include <set>
 
 #include <gtest/gtest.h>
@@ -158,14 +157,7 @@ std::set<uint64_t> confirmed_ids_of_turning_truck(TrackerOptions options) {
   truck.width = 7.0;
   truck.feature_count = 12;
   truck.heading_deg = heading_deg;
-  truck.ground_centre = [heading_deg](int frame) {
-    cv::Point2d p(120, 300);
-    for (int k = 2; k <= frame; ++k) {
-      const double a = heading_deg(k) * M_PI / 180.0;
-      p += 0.8 * cv::Point2d(std::cos(a), std::sin(a));
-    }
-    return p;
-  };
+  truck.ground_centre = along_heading({120, 300}, 0.8, heading_deg);
   SceneOptions precise;
   precise.feature_velocity_noise = 0.01;
   SyntheticScene scene({truck}, static_camera(), precise);

@@ -31,6 +31,17 @@ std::function<cv::Point2d(int)> straight(cv::Point2d start, cv::Vec2d velocity) 
   return [=](int frame) { return start + cv::Point2d(velocity[0], velocity[1]) * (frame - 1); };
 }
 
+std::function<cv::Point2d(int)> along_heading(cv::Point2d start, double speed, std::function<double(int)> heading_deg) {
+  return [=](int frame) {
+    cv::Point2d p = start;
+    for (int k = 2; k <= frame; ++k) {
+      const double a = heading_deg(k) * M_PI / 180.0;
+      p += speed * cv::Point2d(std::cos(a), std::sin(a));
+    }
+    return p;
+  };
+}
+
 Region piece_of(const Region& whole, double centre_u, double length) {
   Region piece = whole;
   const cv::Point2d centre = from_box_coordinates(whole.box, {centre_u, 0.0});

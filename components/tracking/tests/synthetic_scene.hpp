@@ -117,6 +117,10 @@ Score run_and_score(SyntheticScene& scene, Tracker& tracker, const RunOptions& r
 // Straight ground path: start + velocity * (frame - 1).
 std::function<cv::Point2d(int)> straight(cv::Point2d start, cv::Vec2d velocity);
 
+// Ground path at `speed` px/frame along `heading_deg(frame)`: frame 1 at `start`, each later frame one
+// step along that frame's heading.
+std::function<cv::Point2d(int)> along_heading(cv::Point2d start, double speed, std::function<double(int)> heading_deg);
+
 // A piece of `whole` as segmentation reports a fragment of an object: `length` px long, centred at
 // `centre_u` along the whole box's length (box coordinates, -0.5 rear .. 0.5 front), same width and angle.
 Region piece_of(const Region& whole, double centre_u, double length);

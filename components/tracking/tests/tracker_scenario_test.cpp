@@ -423,15 +423,7 @@ TEST(TrackerScenario, AfterABendTheTravelHeadingWaitsForTheTrackToAgree) {
 // blob axes scattered by 10 deg; frames 140-220, on the straight after the bend.
 double gently_turning_car_axis_error(const TrackerOptions& options) {
   const auto heading_deg = [](int frame) { return -40.0 * std::clamp((frame - 40) / 80.0, 0.0, 1.0); };
-  const auto path = [heading_deg](int frame) {
-    cv::Point2d p(150, 300);
-    for (int k = 2; k <= frame; ++k) {
-      const double a = heading_deg(k) * M_PI / 180.0;
-      p += 0.5 * cv::Point2d(std::cos(a), std::sin(a));
-    }
-    return p;
-  };
-  return one_feature_car_axis_error(path, 10.0, options, 140, 220);
+  return one_feature_car_axis_error(along_heading({150, 300}, 0.5, heading_deg), 10.0, options, 140, 220);
 }
 
 TEST(TrackerScenario, AfterAGentleBendTheTravelHeadingFollowsTheRoad) {
