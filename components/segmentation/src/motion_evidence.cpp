@@ -11,9 +11,10 @@ namespace uavmot::segmentation {
 
 std::optional<MotionEvidence> motion_evidence(const ImageCrop& current, const OrientedBox& box, double margin_px,
                                               const ShiftSearch& search, const Homography& previous_from_current,
-                                              const std::vector<ImageCrop>& previous) {
+                                              const std::vector<ImageCrop>& previous, double lengthen_px) {
   OrientedBox widened = box;
   widened.width += 2.0 * margin_px;
+  widened.length += 2.0 * lengthen_px;
   const auto view = previous_frame_view(current, widened, search, previous_from_current, previous);
   if (!view) return std::nullopt;
   const cv::Rect& bounds = view->bounds;
@@ -68,7 +69,7 @@ std::optional<MotionEvidence> motion_evidence(const ImageCrop& current, const Or
   if (held_pixels == 0 || 2 * held_pixels < inside) return std::nullopt;
   // A pixel's error is noisy; its neighbourhood's says whether the shift explains it.
   cv::blur(evidence, evidence, cv::Size(3, 3), cv::Point(-1, -1), cv::BORDER_REPLICATE);
-  double weight = 0.0, inside_weight = 0.0, sum_across = 0.0;
+  double weight = 0.0, inside_weight = 0.0, sum_across = 0.0, sum_along = 0.0;
   const double angle = box.angle_deg * CV_PI / 180.0, across_sin = std::sin(angle), across_cos = std::cos(angle);
   for (int j = 0; j < evidence.rows; ++j) {
     for (int i = 0; i < evidence.cols; ++i) {
@@ -78,10 +79,11 @@ std::optional<MotionEvidence> motion_evidence(const ImageCrop& current, const Or
       weight += w;
       if (own.contains(p)) inside_weight += w;
       sum_across += w * (-(p.x - box.cx) * across_sin + (p.y - box.cy) * across_cos);
+      sum_along += w * ((p.x - box.cx) * across_cos + (p.y - box.cy) * across_sin);
     }
   }
   if (!(weight > 0.0)) return std::nullopt;
-  return MotionEvidence{sum_across / weight, inside_weight / weight};
+  return MotionEvidence{sum_across / weight, inside_weight / weight, sum_along / weight};
 }
 
 }  // namespace uavmot::segmentation

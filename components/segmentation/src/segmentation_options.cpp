@@ -71,6 +71,9 @@ void validate(const SegmentationOptions& o) {
   require(in_range(r.motion_evidence_margin_widths, 0.0, 5.0), "motion_evidence_margin_widths", "in [0, 5]");
   require(in_range(r.motion_evidence_max_inside, 0.0, 1.0), "motion_evidence_max_inside", "in [0, 1]");
   require(in_range(r.motion_evidence_min_offset_px, 0.0, 100.0), "motion_evidence_min_offset_px", "in [0, 100]");
+  require(in_range(r.fallback_evidence_lengths, 0.0, 10.0), "fallback_evidence_lengths", "in [0, 10]");
+  require(in_range(r.fallback_evidence_widths, 0.0, 10.0), "fallback_evidence_widths", "in [0, 10]");
+  require(in_range(r.fallback_evidence_max_ratio, 0.0, 10.0), "fallback_evidence_max_ratio", "in [0, 10]");
   require(in_range(r.min_length_factor, 0.0, 100.0), "min_length_factor", "in [0, 100]");
   require(in_range(r.max_length_factor, r.min_length_factor, 100.0), "max_length_factor", "in [min_length_factor, 100]");
   require(in_range(r.min_width_factor, 0.0, 100.0), "min_width_factor", "in [0, 100]");
@@ -95,7 +98,7 @@ SegmentationOptions load_segmentation_options(const ConfigNode& node) {
   node.expect_only({"method", "link_distance_m", "link_speed_difference_mps", "velocity_sigma_factor", "min_features",
                     "korn_sigmas_px", "morphological_sizes_px", "lbp_neighbours", "lbp_radii_px", "lbp_min_stddev",
                     "window_margin_m", "min_edge_contrast", "fusion_rule", "threshold_quantile",
-                    "threshold_min_fraction", "connectivity", "closing_size_px", "box_fit", "edge_band_px", "split_width_factor", "split_length_factor", "group_length_factor", "group_width_factor", "group_touch_px", "recentre_min_offset_fraction", "motion_evidence_margin_widths", "motion_evidence_max_inside", "motion_evidence_min_offset_px", "min_length_factor",
+                    "threshold_min_fraction", "connectivity", "closing_size_px", "box_fit", "edge_band_px", "split_width_factor", "split_length_factor", "group_length_factor", "group_width_factor", "group_touch_px", "recentre_min_offset_fraction", "motion_evidence_margin_widths", "motion_evidence_max_inside", "motion_evidence_min_offset_px", "fallback_evidence_lengths", "fallback_evidence_widths", "fallback_evidence_max_ratio", "min_length_factor",
                     "max_length_factor", "min_width_factor", "max_width_factor", "min_supporting_features",
                     "support_margin_px", "fallback_to_cluster_box", "duplicate_overlap", "shift_check_ratio",
                     "shift_check_min_speed_px", "shift_check_search_px", "shadow_correction_factor", "shadow_size_correction_factor", "shadow_max_m",
@@ -145,6 +148,9 @@ SegmentationOptions load_segmentation_options(const ConfigNode& node) {
   node.read("motion_evidence_margin_widths", r.motion_evidence_margin_widths, 0.0, 5.0);
   node.read("motion_evidence_max_inside", r.motion_evidence_max_inside, 0.0, 1.0);
   node.read("motion_evidence_min_offset_px", r.motion_evidence_min_offset_px, 0.0, 100.0);
+  node.read("fallback_evidence_lengths", r.fallback_evidence_lengths, 0.0, 10.0);
+  node.read("fallback_evidence_widths", r.fallback_evidence_widths, 0.0, 10.0);
+  node.read("fallback_evidence_max_ratio", r.fallback_evidence_max_ratio, 0.0, 10.0);
   node.read("min_length_factor", r.min_length_factor, 0.0, 100.0);
   node.read("max_length_factor", r.max_length_factor, 0.0, 100.0);
   node.read("min_width_factor", r.min_width_factor, 0.0, 100.0);

@@ -64,6 +64,41 @@ TEST(MotionEvidence, ARegionOnItsCarStaysThere) {
   EXPECT_NEAR(e->across_px, 0.0, 0.5);
 }
 
+// A box around a car's one feature, at the car's end, lengthened past both its ends: the evidence
+// lies along the box toward the car, and a few steps onto it end on the car (the segmenter's
+// fallback for a cluster whose window gives no blob). Not lengthened, the box sees only its own part.
+TEST(MotionEvidence, ABoxAtOneEndOfItsCarFindsTheCarAlongItsTravel) {
+  for (const cv::Vec2d& velocity : {cv::Vec2d(1.0, 0.0), cv::Vec2d(0.6, 0.0)}) {
+    SCOPED_TRACE(velocity);
+    const TwoFrames f = two_frames(velocity, 100.0);
+    const Windows w = windows_of(f);
+    for (const double along : {-7.0, 7.0}) {
+      SCOPED_TRACE(along);
+      OrientedBox box = f.body;
+      box.cx += along;
+      const auto first = motion_evidence(w.current, box, 3.0, {velocity, 0.5, 0.3}, kPreviousFromCurrent, w.previous, 7.5);
+      ASSERT_TRUE(first.has_value());
+      EXPECT_LT(first->along_px * along, 0.0) << "toward the car";
+      EXPECT_GT(std::abs(first->along_px), 2.0);
+      for (int step = 0; step < 3; ++step) {
+        const auto e = motion_evidence(w.current, box, 3.0, {velocity, 0.5, 0.3}, kPreviousFromCurrent, w.previous, 7.5);
+        ASSERT_TRUE(e.has_value());
+        box.cx += e->along_px;
+        box.cy += e->across_px;
+      }
+      EXPECT_NEAR(box.cx, f.body.cx, 1.5);
+      EXPECT_NEAR(box.cy, f.body.cy, 1.0);
+      const auto own = motion_evidence(w.current, f.body, 3.0, {velocity, 0.5, 0.3}, kPreviousFromCurrent, w.previous);
+      ASSERT_TRUE(own.has_value());
+      OrientedBox unlengthened = f.body;
+      unlengthened.cx += along;
+      const auto short_box = motion_evidence(w.current, unlengthened, 3.0, {velocity, 0.5, 0.3}, kPreviousFromCurrent, w.previous);
+      ASSERT_TRUE(short_box.has_value());
+      EXPECT_LT(std::abs(short_box->along_px), std::abs(first->along_px));
+    }
+  }
+}
+
 // Static texture is explained by the previous frame at rest: it gives no evidence at all, so a
 // region on the ground away from any car is not moved anywhere.
 TEST(MotionEvidence, StaticGroundGivesNone) {

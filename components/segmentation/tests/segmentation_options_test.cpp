@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "uavmot/core/error.hpp"
 
 namespace uavmot::segmentation {
@@ -94,6 +96,19 @@ TEST(SegmentationOptions, ReadsAndBoundsTheMotionEvidence) {
   expect_error_mentions("motion_evidence_min_offset_px: .nan\n", "motion_evidence_min_offset_px");
   SegmentationOptions bad;
   bad.regions.motion_evidence_max_inside = -0.1;
+  EXPECT_THROW(validate(bad), InvalidArgument);
+}
+
+TEST(SegmentationOptions, ReadsAndBoundsTheFallbackOnMotionEvidence) {
+  EXPECT_DOUBLE_EQ(load("{}").regions.fallback_evidence_lengths, 0.5);  // on by default
+  EXPECT_DOUBLE_EQ(load("fallback_evidence_lengths: 0\n").regions.fallback_evidence_lengths, 0.0);
+  EXPECT_DOUBLE_EQ(load("fallback_evidence_lengths: 1.5\n").regions.fallback_evidence_lengths, 1.5);
+  expect_error_mentions("fallback_evidence_lengths: -0.5\n", "fallback_evidence_lengths");
+  expect_error_mentions("fallback_evidence_lengths: 11\n", "fallback_evidence_lengths");
+  expect_error_mentions("fallback_evidence_lengths: .nan\n", "fallback_evidence_lengths");
+  expect_error_mentions("fallback_evidence_lengths: far\n", "fallback_evidence_lengths");
+  SegmentationOptions bad;
+  bad.regions.fallback_evidence_lengths = std::nan("");
   EXPECT_THROW(validate(bad), InvalidArgument);
 }
 

@@ -162,6 +162,66 @@ TEST(ShiftCheck, TheSegmenterDropsAStaticMarkingBesideAMovingCar) {
   }
 }
 
+// A dark car whose window gives no blob (here: every blob needs more supporting features than the
+// cluster has) and whose one moving feature sits at its front end. The box around the feature sits
+// half a car ahead; the motion evidence puts it on the car, reported as the segmentation's region.
+MarkingScene dark_car_scene(int64_t index) {
+  MarkingScene s;
+  const int x = 80 + static_cast<int>(index);  // 1 px per frame to the right
+  s.frame.stream_id = s.motion.stream_id = "test";
+  s.frame.index = s.motion.frame_index = index;
+  s.frame.image = textured_background(cv::Size(200, 160), 100.0, 6.0, 0.0, 3);
+  s.frame.image(cv::Rect(x, 74, 15, 6)).setTo(cv::Scalar(60));
+  s.motion.quality.valid = true;
+  TrackedFeature front = features_on(OrientedBox{x + 7.0, 76.5, 6.0, 15.0, 0.0}, {1.0, 0.0}, 1).front();
+  front.position = {x + 13.0, 76.5};
+  s.motion.features = {front};
+  return s;
+}
+
+TEST(ShiftCheck, ABloblessClusterGetsABoxOnItsMotionEvidence) {
+  SceneInfo scene;
+  scene.gsd_m = 0.3;  // the car's 15 x 6 px
+  scene.fps = 25.0;
+  for (const double lengths : {0.0, 0.5}) {
+    SCOPED_TRACE(lengths);
+    SegmentationOptions options;
+    options.regions.min_supporting_features = 2;
+    options.regions.fallback_evidence_lengths = lengths;
+    Segmenter segmenter(options, scene);
+    const MarkingScene first = dark_car_scene(6), second = dark_car_scene(7);
+    segmenter.process(first.frame, first.motion);
+    const auto result = segmenter.process(second.frame, second.motion);
+    ASSERT_EQ(result.regions.size(), 1u);
+    const Region& region = result.regions.front();
+    const cv::Point2d car(87.0 + 7.0, 76.5), feature(87.0 + 13.0, 76.5);
+    if (lengths > 0.0) {
+      EXPECT_EQ(region.method, SegmentationMethod::Fusion);
+      EXPECT_NEAR(region.box.cx, car.x, 1.5) << "on the car";
+      EXPECT_NEAR(region.box.cy, car.y, 1.0);
+      EXPECT_EQ(segmenter.last_stats().evidence_fallbacks, 1u);
+      EXPECT_EQ(segmenter.last_stats().fallback_regions, 0u);
+    } else {
+      EXPECT_EQ(region.method, SegmentationMethod::Clustering);
+      EXPECT_NEAR(region.box.cx, feature.x, 0.01) << "around the feature";
+      EXPECT_EQ(segmenter.last_stats().evidence_fallbacks, 0u);
+      EXPECT_EQ(segmenter.last_stats().fallback_regions, 1u);
+    }
+  }
+  // Static ground under the feature: no evidence, the box around the feature stays.
+  Segmenter segmenter([] {
+    SegmentationOptions o;
+    o.regions.min_supporting_features = 2;
+    return o;
+  }(), scene);
+  MarkingScene first = dark_car_scene(6), second = dark_car_scene(7);
+  second.frame.image = first.frame.image.clone();  // nothing moved
+  segmenter.process(first.frame, first.motion);
+  const auto result = segmenter.process(second.frame, second.motion);
+  ASSERT_EQ(result.regions.size(), 1u);
+  EXPECT_EQ(result.regions.front().method, SegmentationMethod::Clustering);
+}
+
 // The state a new process restores (Segmenter::save_state): the marking scene's frame 7 segmented
 // by a new segmenter with frame 6's saved state is frame 7 as the first segmenter gave it, the
 // marking dropped; a new one without it keeps the marking.

@@ -107,6 +107,18 @@ struct RegionOptions {
   double motion_evidence_margin_widths = 1.0;
   double motion_evidence_max_inside = 0.6;
   double motion_evidence_min_offset_px = 0.5;
+  // A cluster whose window gives no blob gets, instead of the box around its features, its box moved
+  // onto its motion evidence, searched `fallback_evidence_lengths` vehicle lengths past each end and
+  // `fallback_evidence_widths` vehicle widths each side: a dark car whose edges vanish into a shadow
+  // or the asphalt often shows a single feature at one end, and the box around that sits half a car
+  // off. Kept only where the previous frame shifted by the cluster's velocity explains the box's
+  // pixels with at most `fallback_evidence_max_ratio` of the error at rest (a stricter shift check:
+  // the best of several shifts beats rest on plain asphalt by chance); it is then reported with the
+  // segmentation's method, not as method=clustering, since the image placed it
+  // (docs/segmentation.md, "Blob-less clusters"). fallback_evidence_lengths 0 disables.
+  double fallback_evidence_lengths = 0.5;
+  double fallback_evidence_widths = 0.5;
+  double fallback_evidence_max_ratio = 0.75;
   // Plausible region sizes, as multiples of the expected vehicle length / width.
   double min_length_factor = 0.4;
   double max_length_factor = 3.0;

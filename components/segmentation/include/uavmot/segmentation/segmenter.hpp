@@ -60,6 +60,7 @@ struct SegmentationStats {
   size_t duplicate_regions = 0;       // regions dropped as duplicates of an earlier one
   size_t static_regions = 0;          // regions dropped by the shift check (static texture)
   size_t evidence_moves = 0;          // regions moved onto their motion evidence
+  size_t evidence_fallbacks = 0;      // blob-less clusters given a box on their motion evidence
   std::optional<cv::Vec2d> shadow_offset_px;  // the shadow offset the regions were corrected by, if any
 };
 
@@ -95,6 +96,10 @@ class Segmenter {
  private:
   std::vector<FeatureCluster> cluster(const MotionEstimate& motion, cv::Size image_size, ClusteringStats* stats) const;
   cv::Rect window_of(const FeatureCluster& cluster, cv::Size image_size) const;
+  // The window with room around it for the motion evidence of a blob-less cluster
+  // (fallback_evidence_lengths past each side): the crop the segmenter needs and keeps for the
+  // next frame's shift check. The window itself when that fallback is off.
+  cv::Rect evidence_window_of(const FeatureCluster& cluster, cv::Size image_size) const;
   cv::Mat accumulator(const cv::Mat& gray) const;
   cv::Mat normalised_accumulator(SegmentationMethod method, const cv::Mat& gray) const;
   // A box (method=clustering) around the cluster's features that no region explains, when there
