@@ -222,7 +222,9 @@ SplitMergeResult resolve_split_merge(const RegionAssociation& gating, const std:
       std::vector<OrientedBox> own_boxes;
       for (const int r : own) {
         const OrientedBox& region = regions[static_cast<size_t>(r)];
-        const bool too_wide = limits.widest_region > 0.0 && std::min(region.width, region.length) > limits.widest_region;
+        // Read along the track's axis, as the update reads it: a blob across the lane is wide too.
+        const bool too_wide = limits.widest_region > 0.0 &&
+                              box_along_heading(region, tracks[t].predicted.angle_deg).width > limits.widest_region;
         own_boxes.push_back(too_wide ? within_lane_of(region, tracks[t].predicted) : region);
       }
       result.measurements[t] = split_measurement(tracks[t], own, own_boxes, own_overlaps, features, options,

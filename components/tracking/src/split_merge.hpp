@@ -26,7 +26,7 @@ namespace uavmot::tracking {
 struct ObjectLimits {
   cv::Size2d single_object;  // a shared region within this holds one object tracked in pieces
   cv::Size2d largest_object;  // no box assembled from fragments (or pieces of a vehicle) is larger
-  double widest_region = 0.0;  // a region wider than this holds more than one object (zero = no limit)
+  double widest_region = 0.0;  // a region wider than this along a track's axis holds more than one object (zero = no limit)
 };
 
 // single_object_size_factor x the scene's vehicle; max_object_width_m x max_object_length_factor

@@ -249,6 +249,28 @@ TEST(SplitMerge, ARegionWiderThanAnyVehicleIsCutToTheTracksLane) {
   EXPECT_EQ(kept.measurements[0].box, own[0]);
 }
 
+TEST(SplitMerge, ARegionAcrossTheTracksAxisIsWideToo) {
+  // `paper` seed 108: a blob 10 x 20 px lying across a truck's track at 70 degrees to its axis (the
+  // blob's shorter side is below the 11.4 px limit), over the truck and the one in the next lane.
+  // Read along the track's axis, as the update reads it, it is about 20 px wide: cut to the lane.
+  std::vector<TrackRecord> tracks(1);
+  const std::vector<OrientedBox> predicted = {{100, 100, 8, 22, 0}};
+  const FeatureIndex none({});
+  const std::vector<OrientedBox> regions = {{101, 103, 10, 20, 70}};
+  const RegionAssociation a = associate_regions(regions, predicted, 0.05);
+  const SplitMergeResult r = resolve_split_merge(a, regions, in_frame(tracks, predicted, velocities_of(1)), none,
+                                                 TrackerOptions{}, limits({}, {}, 11.4));
+  ASSERT_EQ(r.measurements[0].kind, MeasurementKind::Box);
+  EXPECT_LE(r.measurements[0].box.width, 8.0 + 1e-9) << "no wider than the track's lane";
+  EXPECT_NEAR(r.measurements[0].box.angle_deg, 0.0, 1e-9);
+  // The same blob along the axis is one vehicle wide and stays as it is.
+  const std::vector<OrientedBox> along = {{101, 101, 10, 20, 0}};
+  const SplitMergeResult kept = resolve_split_merge(associate_regions(along, predicted, 0.05), along,
+                                                    in_frame(tracks, predicted, velocities_of(1)), none,
+                                                    TrackerOptions{}, limits({}, {}, 11.4));
+  EXPECT_EQ(kept.measurements[0].box, along[0]);
+}
+
 TEST(SplitMerge, FragmentsWithTheSameMotionAreOneMeasurement) {
   std::vector<TrackRecord> tracks(1);
   const std::vector<OrientedBox> predicted = {{100, 100, 5, 15, 0}};

@@ -94,8 +94,8 @@ struct TrackerOptions {
   // region; a 10.5 m truck's cab and trailer boxes overstate it, together 14 m).
   double max_object_width_m = 4.0;
   double max_object_length_factor = 3.3;
-  // A track's own region wider than this (its shorter side) is more than one vehicle: a truck and an
-  // untracked car beside it in one blob. The track takes only its own lane of it: the region read
+  // A track's own region wider than this (read along the track's axis) is more than one vehicle: a
+  // truck and an untracked car beside it in one blob, or a blob lying across two lanes. The track takes only its own lane of it: the region read
   // along the track's axis, cut across to the track's predicted width. 0 disables.
   double max_region_width_m = 4.0;
   // Two tracks driving nose to tail are pieces of one long vehicle (truck cab and trailer) when the
