@@ -198,14 +198,16 @@ TEST(ChainDenseScenario, ThreeSeedsOfQueuesHoldTheirCorrectRateAndFalseAlarms) {
 // the camera brings new ground in that quickly (docs/tracking.md, session 41: `strong_motion_max_view_frames`,
 // `quick_confirm_max_ground_frames`), seeds 1-3 at 150 frames went from 81.93 / 81.00 / 81.53 % correct, 0.83 /
 // 0.61 / 0.69 false alarms per frame (mean 81.5 %, 0.71) to 83.85 / 83.78 / 83.79 %, 0.96 / 0.62 / 0.57 (mean
-// 83.8 %, 0.72): both correct-rate bounds fail without them. Issue 18's target (>= 80 %, <= 1 false alarm per
-// frame) is met here and on the held-out seeds 100-109 (80.25 %, 0.42).
+// 83.8 %, 0.72): both correct-rate bounds fail without them. Since session 44 (blob-less clusters placed on their
+// motion evidence, the lane rule read along the track's axis) 84.87 / 85.24 / 85.43 %, 1.13 / 0.59 / 0.79 false
+// alarms per frame (mean 85.2 %, 0.84): the false-alarm bound is issue 18's target, <= 1 per frame (held-out seeds
+// 100-109: 81.48 %, 0.47).
 TEST(ChainFastcamScenario, ThreeSeedsOfAFastCameraHoldTheirCorrectRateAndFalseAlarms) {
   SeedFigures f;
   ASSERT_NO_FATAL_FAILURE(score_seeds_1_to_3("fastcam", f, 3000));
-  EXPECT_GE(f.correct, 0.83);
-  EXPECT_GE(f.worst_correct, 0.83);
-  EXPECT_LE(f.false_alarms, 0.8);
+  EXPECT_GE(f.correct, 0.84);
+  EXPECT_GE(f.worst_correct, 0.84);
+  EXPECT_LE(f.false_alarms, 1.0);
 }
 
 }  // namespace
