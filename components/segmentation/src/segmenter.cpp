@@ -60,6 +60,14 @@ double covered_fraction(const OrientedBox& candidate, const OrientedBox& kept) {
   return area > 0.0 ? intersection_area(candidate, kept) / area : 1.0;
 }
 
+// `box` moved `along` px along its length axis and `across` px across it (+ toward its +y side).
+OrientedBox moved_in_own_frame(OrientedBox box, double along, double across) {
+  const double a = box.angle_deg * CV_PI / 180.0;
+  box.cx += along * std::cos(a) - across * std::sin(a);
+  box.cy += along * std::sin(a) + across * std::cos(a);
+  return box;
+}
+
 // Steps of moving a blob-less cluster's box onto its motion evidence: from one end of a car, the
 // first step falls short, as the far end's evidence lies mostly outside the search. 1 step against
 // 3 (docs/segmentation.md, "Blob-less clusters"): `paper` seed 103 92.1 against 92.5 % correct,
@@ -74,15 +82,13 @@ std::optional<Region> region_on_evidence(const FeatureCluster& cluster, const Im
                                          double margin_px, double lengthen_px, double max_ratio,
                                          SegmentationMethod method) {
   Region region = cluster_region(cluster);
-  const double a = cluster.box.angle_deg * CV_PI / 180.0;
   for (int k = 0; k < kEvidenceSteps; ++k) {
     const auto e = motion_evidence(current, region.box, margin_px, search, previous_from_current, previous, lengthen_px);
     if (!e) {
       if (k == 0) return std::nullopt;
       break;
     }
-    region.box.cx += e->along_px * std::cos(a) - e->across_px * std::sin(a);
-    region.box.cy += e->along_px * std::sin(a) + e->across_px * std::cos(a);
+    region.box = moved_in_own_frame(region.box, e->along_px, e->across_px);
   }
   const auto moved = compare_shifts(current, region.box, search, previous_from_current, previous);
   if (!moved || moved->moving_error > max_ratio * moved->static_error) return std::nullopt;
@@ -183,13 +189,16 @@ cv::Rect Segmenter::window_of(const FeatureCluster& cluster, cv::Size image_size
   return cv::Rect(x0, y0, x1 - x0 + 1, y1 - y0 + 1) & cv::Rect(0, 0, image_size.width, image_size.height);
 }
 
-cv::Rect Segmenter::evidence_window_of(const FeatureCluster& cluster, cv::Size image_size) const {
-  const cv::Rect window = window_of(cluster, image_size);
+double Segmenter::evidence_lengthen_px() const {
+  return options_.regions.fallback_evidence_lengths * scene_.metres_to_px(scene_.vehicle_length_m);
+}
+
+cv::Rect Segmenter::evidence_window_of(const cv::Rect& window, cv::Size image_size) const {
   const auto& r = options_.regions;
   if (!r.fallback_to_cluster_box || !(r.fallback_evidence_lengths > 0.0) || !(r.shift_check_ratio > 0.0) || window.empty()) {
     return window;
   }
-  const int grow = static_cast<int>(std::ceil(r.fallback_evidence_lengths * scene_.metres_to_px(scene_.vehicle_length_m)));
+  const int grow = static_cast<int>(std::ceil(evidence_lengthen_px()));
   return cv::Rect(window.x - grow, window.y - grow, window.width + 2 * grow, window.height + 2 * grow) &
          cv::Rect(0, 0, image_size.width, image_size.height);
 }
@@ -198,7 +207,7 @@ std::vector<cv::Rect> Segmenter::required_crops(const MotionEstimate& motion, cv
   std::vector<cv::Rect> rois;
   if (options_.method == SegmentationMethod::Clustering) return rois;
   for (const auto& c : cluster(motion, image_size, nullptr)) {
-    const cv::Rect window = evidence_window_of(c, image_size);
+    const cv::Rect window = evidence_window_of(window_of(c, image_size), image_size);
     if (!window.empty()) rois.push_back(window);
   }
   return rois;
@@ -303,7 +312,7 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
       for (auto it = first; it != last; ++it) feature_positions.push_back(it->second);
     }
     const cv::Rect wanted = window_of(c, input.image_size);
-    cv::Rect outer = evidence_window_of(c, input.image_size);  // holds `wanted`
+    cv::Rect outer = evidence_window_of(wanted, input.image_size);  // holds `wanted`
     // The crop that covers the window with the evidence's margin, else the one that covers most of it.
     const ImageCrop* source = nullptr;
     int best_area = 0;
@@ -353,10 +362,7 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
         if (compared && evidence_margin_px > 0.0) {
           const auto e = motion_evidence(*current, region.box, evidence_margin_px, search, previous_from_current, previous_windows_);
           if (e && e->inside_fraction < r.motion_evidence_max_inside && std::abs(e->across_px) >= r.motion_evidence_min_offset_px) {
-            OrientedBox moved = region.box;
-            const double a = region.box.angle_deg * CV_PI / 180.0;
-            moved.cx -= e->across_px * std::sin(a);
-            moved.cy += e->across_px * std::cos(a);
+            const OrientedBox moved = moved_in_own_frame(region.box, 0.0, e->across_px);
             // Only onto something that moves more plainly than what the region held (its shift check
             // above, on the same box): on noise (an interlaced clip's static slab) the evidence's
             // centroid is noise too.
@@ -371,10 +377,9 @@ SegmentationResult Segmenter::process(const SegmentationInput& input, const Moti
       }
       if (regions.empty() && compared && r.fallback_to_cluster_box && r.fallback_evidence_lengths > 0.0 &&
           within_vehicle_size(c.box)) {
-        const double lengthen_px = r.fallback_evidence_lengths * scene_.metres_to_px(scene_.vehicle_length_m);
         const double margin_px = r.fallback_evidence_widths * scene_.metres_to_px(scene_.vehicle_width_m);
         if (auto placed = region_on_evidence(c, *current, search, previous_from_current, previous_windows_, margin_px,
-                                             lengthen_px, r.fallback_evidence_max_ratio, options_.method)) {
+                                             evidence_lengthen_px(), r.fallback_evidence_max_ratio, options_.method)) {
           regions.push_back(*placed);
           ++stats_.evidence_fallbacks;
         }

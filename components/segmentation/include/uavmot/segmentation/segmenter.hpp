@@ -96,10 +96,11 @@ class Segmenter {
  private:
   std::vector<FeatureCluster> cluster(const MotionEstimate& motion, cv::Size image_size, ClusteringStats* stats) const;
   cv::Rect window_of(const FeatureCluster& cluster, cv::Size image_size) const;
-  // The window with room around it for the motion evidence of a blob-less cluster
-  // (fallback_evidence_lengths past each side): the crop the segmenter needs and keeps for the
-  // next frame's shift check. The window itself when that fallback is off.
-  cv::Rect evidence_window_of(const FeatureCluster& cluster, cv::Size image_size) const;
+  // How far past each end of a blob-less cluster's box its motion evidence is searched (px).
+  double evidence_lengthen_px() const;
+  // A cluster's window (window_of) with room around it for that search: the crop the segmenter
+  // needs and keeps for the next frame's shift check. The window itself when that fallback is off.
+  cv::Rect evidence_window_of(const cv::Rect& window, cv::Size image_size) const;
   cv::Mat accumulator(const cv::Mat& gray) const;
   cv::Mat normalised_accumulator(SegmentationMethod method, const cv::Mat& gray) const;
   // A box (method=clustering) around the cluster's features that no region explains, when there

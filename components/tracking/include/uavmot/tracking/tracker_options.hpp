@@ -95,8 +95,9 @@ struct TrackerOptions {
   double max_object_width_m = 4.0;
   double max_object_length_factor = 3.3;
   // A track's own region wider than this (read along the track's axis) is more than one vehicle: a
-  // truck and an untracked car beside it in one blob, or a blob lying across two lanes. The track takes only its own lane of it: the region read
-  // along the track's axis, cut across to the track's predicted width. 0 disables.
+  // truck and an untracked car beside it in one blob, or a blob lying across two lanes. The track
+  // takes only its own lane of it: the region read along the track's axis, cut across to the
+  // track's predicted width. 0 disables.
   double max_region_width_m = 4.0;
   // Two tracks driving nose to tail are pieces of one long vehicle (truck cab and trailer) when the
   // features on both move at piece_min_speed_mps or faster with velocities within
