@@ -11,8 +11,11 @@ the oriented boxes covers half of the vehicle or half of the box). Each miss is 
     decelerating when its speed 5 frames earlier differs by more than 0.02 px/frame, else steady;
   - how long it has been in view (frames since it was first at least half visible).
 The default first frame, 11, leaves out the chain's start (no motion before frame 2, confirmation).
+With --by-vehicle N, also the N vehicles with the most misses, one line each: how many of its
+instances were missed, the first and last missed frame, its size and mean speed over the misses, and
+how many of the misses had a moving feature on it (a seed's losses are often one or two vehicles).
 
-    python3 tools/miss_causes.py SEQUENCE_DIR RESULT_DIR [--first-frame N]
+    python3 tools/miss_causes.py SEQUENCE_DIR RESULT_DIR [--first-frame N] [--by-vehicle N]
 """
 import argparse
 import collections
@@ -40,6 +43,7 @@ def main():
     parser.add_argument("sequence")
     parser.add_argument("result")
     parser.add_argument("--first-frame", type=int, default=11)
+    parser.add_argument("--by-vehicle", type=int, default=0, metavar="N")
     args = parser.parse_args()
     try:
         every_vehicle, tracks, _ = read_run(args.sequence, args.result)
@@ -81,6 +85,8 @@ def main():
     instances = 0
     causes = collections.Counter()
     slow_instances, slow_missed = collections.Counter(), collections.Counter()
+    per_vehicle = collections.defaultdict(list)  # id -> (frame, box, speed, has_feature) per miss
+    vehicle_instances = collections.Counter()
     for frame, vehicles in sorted(truth.items()):
         if frame < args.first_frame:
             continue
@@ -88,6 +94,7 @@ def main():
             if float(g["visibility"]) < MIN_VISIBILITY:
                 continue
             instances += 1
+            vehicle_instances[int(g["id"])] += 1
             slow = speed_class(int(g["id"]), frame)
             slow_instances[slow] += 1
             age = age_band(int(g["id"]), frame)
@@ -101,6 +108,7 @@ def main():
             crowded = any(math.hypot(b[0] - box[0], b[1] - box[1]) < 1.5 * box[3]
                           for h, b, _ in vehicles if h is not g)
             causes[("crowded" if crowded else "alone", "moving features" if has_feature else "no moving feature")] += 1
+            per_vehicle[int(g["id"])].append((frame, box, speed[(int(g["id"]), frame)], has_feature))
     missed = sum(causes.values())
     print(f"{args.result}: {instances} instances from frame {args.first_frame}, {missed} missed ({100.0 * missed / max(instances, 1):.1f} %)")
     for key in sorted(causes):
@@ -110,6 +118,18 @@ def main():
     for band in age_bands:
         name = f"{band[0]}-{band[1]}" if band[1] is not None else f"{band[0]}+"
         print(f"  in view for {name:5s} frames: {age_missed[band]:5d} missed of {age_instances[band]:5d} instances")
+    if args.by_vehicle > 0:
+        print(f"  the {args.by_vehicle} vehicles with the most misses:")
+    for vehicle_id, misses in sorted(per_vehicle.items(), key=lambda kv: -len(kv[1]))[:max(args.by_vehicle, 0)]:
+        frames = [m[0] for m in misses]
+        width = sum(m[1][2] for m in misses) / len(misses)
+        length = sum(m[1][3] for m in misses) / len(misses)
+        mean_speed = sum(m[2] for m in misses) / len(misses)
+        with_feature = sum(1 for m in misses if m[3])
+        first = misses[0][1]
+        print(f"    vehicle {vehicle_id}: {len(misses)} of {vehicle_instances[vehicle_id]} missed, frames {min(frames)}-{max(frames)},"
+              f" {width:.1f} x {length:.1f} px, {mean_speed:.2f} px/frame, {with_feature} with a moving feature;"
+              f" at frame {misses[0][0]} ({first[0]:.1f}, {first[1]:.1f}) angle {first[4]:.0f} deg")
 
 if __name__ == "__main__":
     main()

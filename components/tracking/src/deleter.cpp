@@ -59,6 +59,34 @@ bool clear_of_border(const OrientedBox& box, const cv::Size& image, double margi
   return true;
 }
 
+bool entering_view(const OrientedBox& box, const cv::Point2d& velocity, const cv::Size& image, double margin_px,
+                   double max_angle_deg) {
+  const double speed = std::hypot(velocity.x, velocity.y);
+  if (!image_size_known(image) || max_angle_deg <= 0.0 || speed <= 0.0) return false;
+  const double min_cos = std::cos(max_angle_deg * M_PI / 180.0);
+  double min_x = box.cx, max_x = box.cx, min_y = box.cy, max_y = box.cy;
+  for (const auto& c : box_corners(box)) {
+    min_x = std::min(min_x, c.x);
+    max_x = std::max(max_x, c.x);
+    min_y = std::min(min_y, c.y);
+    max_y = std::max(max_y, c.y);
+  }
+  // Every side the box reaches (as clear_of_border draws them) must be one it comes in through.
+  const auto inward = [&](double along_normal) { return along_normal >= min_cos * speed; };
+  if (min_x - margin_px < -0.5 && !inward(velocity.x)) return false;
+  if (max_x + margin_px >= image.width - 0.5 && !inward(-velocity.x)) return false;
+  if (min_y - margin_px < -0.5 && !inward(velocity.y)) return false;
+  if (max_y + margin_px >= image.height - 0.5 && !inward(-velocity.y)) return false;
+  return true;
+}
+
+bool may_confirm_at(const TrackRecord& track, const OrientedBox& box, const cv::Size& image, const TrackerOptions& options) {
+  const double margin = options.confirm_border_margin_px;
+  if (clear_of_border(box, image, margin)) return true;
+  return static_cast<int>(track.features.size()) >= options.confirm_entering_min_features &&
+         entering_view(box, {track.mean[kVx], track.mean[kVy]}, image, margin, options.confirm_entering_max_angle_deg);
+}
+
 Fate decide_fate(const TrackRecord& track, bool in_view, const TrackerOptions& options) {
   if (!in_view) {
     return (track.state != TrackState::Tentative && options.reacquire_max_frames > 0) ? Fate::Dormant : Fate::Delete;

@@ -26,6 +26,20 @@ bool wholly_inside_view(const OrientedBox& box, const cv::Size& image);
 // image's edge or outside it.
 bool clear_of_border(const OrientedBox& box, const cv::Size& image, double margin_px);
 
+// True when the box's ground velocity points into the image, within `max_angle_deg` of the inward
+// normal, at every side of the image that a corner of the box comes within `margin_px` of: a vehicle
+// driving into the view. A static object that the camera uncovers grows outward instead (its centre
+// moves toward the border over the ground). False when the image size is unknown, the velocity is
+// zero or `max_angle_deg` is not positive.
+bool entering_view(const OrientedBox& box, const cv::Point2d& velocity, const cv::Size& image, double margin_px,
+                   double max_angle_deg);
+
+// Whether a tentative track whose box is `box` may confirm in this frame: clear of the image border
+// (TrackerOptions::confirm_border_margin_px), or driving into the view (entering_view with
+// TrackerOptions::confirm_entering_max_angle_deg, the track's velocity) with at least
+// TrackerOptions::confirm_entering_min_features linked moving features.
+bool may_confirm_at(const TrackRecord& track, const OrientedBox& box, const cv::Size& image, const TrackerOptions& options);
+
 // Records one frame in the track's history: a region hit, support by features only, or nothing.
 // An established track that misses a frame stays confirmed for `gap_frames` when `may_bridge_gap`
 // (the caller passes false at the image border, where a vehicle misses its regions because it leaves).

@@ -118,7 +118,7 @@ class PaperLifecycle final : public Deleter {
   Fate judge(TrackInFrame& track, const FrameInput& in) const override {
     const cv::Size& image = in.image;
     record_frame(track.record, track.region_hit, track.supported, options_, wholly_inside_view(track.posterior, image),
-                 confirm_min_speed_px_, clear_of_border(track.posterior, image, options_.confirm_border_margin_px),
+                 confirm_min_speed_px_, may_confirm_at(track.record, track.posterior, image, options_),
                  on_new_ground(track.posterior, in, options_));
     return decide_fate(track.record, inside_view(track.posterior, image), options_);
   }

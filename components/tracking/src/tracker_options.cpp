@@ -41,6 +41,7 @@ const std::vector<DoubleField>& double_fields() {
   static const std::vector<DoubleField> fields = {
       {"confirm_min_speed_mps", &TrackerOptions::confirm_min_speed_mps, 0.0, 100.0},
       {"confirm_border_margin_px", &TrackerOptions::confirm_border_margin_px, 0.0, 1000.0},
+      {"confirm_entering_max_angle_deg", &TrackerOptions::confirm_entering_max_angle_deg, 0.0, 90.0},
       {"process_accel_sigma_px", &TrackerOptions::process_accel_sigma_px, 1e-6, 100.0},
       {"process_size_sigma_px", &TrackerOptions::process_size_sigma_px, 1e-6, 100.0},
       {"process_angle_sigma_deg", &TrackerOptions::process_angle_sigma_deg, 1e-6, 90.0},
@@ -99,6 +100,7 @@ const std::vector<IntField>& int_fields() {
       {"confirm_hits_with_features", &TrackerOptions::confirm_hits_with_features, 0, 32},
       {"confirm_min_features", &TrackerOptions::confirm_min_features, 1, 1000},
       {"quick_confirm_min_features", &TrackerOptions::quick_confirm_min_features, 1, 1000},
+      {"confirm_entering_min_features", &TrackerOptions::confirm_entering_min_features, 0, 1000},
       {"quick_confirm_max_ground_frames", &TrackerOptions::quick_confirm_max_ground_frames, -1, 1000},
       {"tentative_max_misses", &TrackerOptions::tentative_max_misses, 0, 1000},
       {"max_coast_frames", &TrackerOptions::max_coast_frames, 0, 100000},

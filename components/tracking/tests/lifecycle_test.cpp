@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include "deleter.hpp"
+#include "kalman_model.hpp"
 
 namespace uavmot::tracking {
 namespace {
@@ -140,6 +141,50 @@ TEST(Lifecycle, ClearOfBorderKeepsTheMarginOnEverySide) {
   EXPECT_FALSE(clear_of_border(OrientedBox{50, 6.5, 10, 20, 0}, image, 3.0));  // top at y = 1.5
   EXPECT_FALSE(clear_of_border(OrientedBox{50, 73.5, 10, 20, 0}, image, 3.0)); // bottom at y = 78.5
   EXPECT_TRUE(clear_of_border(OrientedBox{50, 73.5, 10, 20, 0}, cv::Size(), 3.0));  // image size unknown
+}
+
+TEST(Lifecycle, EnteringTheViewMeansMovingInThroughEverySideTheBoxReaches) {
+  const cv::Size image(100, 80);
+  const OrientedBox at_top{50, 4, 10, 20, 90};  // 20 px long down the image; its top end at y = -6
+  EXPECT_TRUE(entering_view(at_top, {0.0, 1.0}, image, 1.0, 60.0));    // straight in
+  EXPECT_TRUE(entering_view(at_top, {0.8, 1.0}, image, 1.0, 60.0));    // 39 deg off the inward normal
+  EXPECT_FALSE(entering_view(at_top, {2.0, 1.0}, image, 1.0, 60.0));   // 63 deg off: along the border
+  EXPECT_FALSE(entering_view(at_top, {0.0, -1.0}, image, 1.0, 60.0));  // going out
+  EXPECT_FALSE(entering_view(at_top, {0.0, 0.0}, image, 1.0, 60.0));   // not moving
+  EXPECT_FALSE(entering_view(at_top, {0.0, 1.0}, image, 1.0, 0.0));    // the rule off
+  EXPECT_FALSE(entering_view(at_top, {0.0, 1.0}, cv::Size(), 1.0, 60.0));  // image size unknown
+  // In the top-left corner it must come in through both sides.
+  const OrientedBox in_corner{4, 4, 10, 20, 45};
+  EXPECT_TRUE(entering_view(in_corner, {1.0, 1.0}, image, 1.0, 60.0));
+  EXPECT_FALSE(entering_view(in_corner, {0.0, 1.0}, image, 1.0, 60.0));
+  // Each side: the bottom and the right need the opposite sign.
+  EXPECT_TRUE(entering_view(OrientedBox{50, 76, 10, 20, 90}, {0.0, -1.0}, image, 1.0, 60.0));
+  EXPECT_FALSE(entering_view(OrientedBox{50, 76, 10, 20, 90}, {0.0, 1.0}, image, 1.0, 60.0));
+  EXPECT_TRUE(entering_view(OrientedBox{96, 40, 10, 20, 0}, {-1.0, 0.0}, image, 1.0, 60.0));
+  EXPECT_FALSE(entering_view(OrientedBox{96, 40, 10, 20, 0}, {1.0, 0.0}, image, 1.0, 60.0));
+}
+
+TEST(Lifecycle, AtTheBorderOnlyATrackDrivingInWithAFeatureMayConfirm) {
+  // A static object the camera uncovers at the top grows upward over the ground: its box centre moves
+  // out. A car driving in moves down, into the image, and carries its features with it.
+  TrackerOptions o;
+  const cv::Size image(100, 80);
+  const OrientedBox at_top{50, 4, 5, 12, 90};  // top end at y = -2
+  TrackRecord car = new_track();
+  car.mean[kVx] = 0.1;
+  car.mean[kVy] = 1.0;
+  car.features = {FeatureLink{1, {0, 2}, 1}};
+  EXPECT_TRUE(may_confirm_at(car, at_top, image, o));
+  TrackRecord uncovered = car;
+  uncovered.mean[kVy] = -1.0;
+  EXPECT_FALSE(may_confirm_at(uncovered, at_top, image, o));
+  TrackRecord featureless = car;
+  featureless.features.clear();
+  EXPECT_FALSE(may_confirm_at(featureless, at_top, image, o));
+  o.confirm_entering_max_angle_deg = 0.0;  // the rule off: every track waits until it is in
+  EXPECT_FALSE(may_confirm_at(car, at_top, image, o));
+  EXPECT_TRUE(may_confirm_at(car, OrientedBox{50, 40, 5, 12, 90}, image, o));  // inside
+  EXPECT_TRUE(may_confirm_at(uncovered, OrientedBox{50, 40, 5, 12, 90}, image, o));
 }
 
 TEST(Lifecycle, LeavingTheViewHidesAtOnce) {

@@ -21,6 +21,11 @@ TEST(TrackerOptions, LoadsAndValidatesYaml) {
   EXPECT_EQ(o.max_coast_frames, 8);
   EXPECT_EQ(o.region_method, "all");
   EXPECT_EQ(o.confirm_hits, TrackerOptions{}.confirm_hits);
+  const TrackerOptions entering =
+      load_tracker_options(ConfigNode::load_string("confirm_entering_max_angle_deg: 0\nconfirm_entering_min_features: 2\n", "t.yaml"));
+  EXPECT_EQ(entering.confirm_entering_max_angle_deg, 0.0);  // the rule off
+  EXPECT_EQ(entering.confirm_entering_min_features, 2);
+  EXPECT_EQ(o.confirm_entering_max_angle_deg, 60.0);
 }
 
 TEST(TrackerOptions, RejectsBadValuesNamingTheKey) {
@@ -39,6 +44,9 @@ TEST(TrackerOptions, RejectsBadValuesNamingTheKey) {
   expect_error("max_coast_frame: 3\n", "max_coast_frame");  // typo
   expect_error("process_accel_sigma_px: fast\n", "process_accel_sigma_px");
   expect_error("confirm_hits: 6\nconfirm_window: 4\n", "confirm_hits");
+  expect_error("confirm_entering_max_angle_deg: 95\n", "confirm_entering_max_angle_deg");
+  expect_error("confirm_entering_max_angle_deg: .nan\n", "confirm_entering_max_angle_deg");
+  expect_error("confirm_entering_min_features: -1\n", "confirm_entering_min_features");
 }
 
 TEST(TrackerOptions, TrackerRejectsInvalidOptions) {

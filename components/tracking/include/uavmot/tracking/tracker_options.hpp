@@ -144,6 +144,11 @@ struct TrackerOptions {
   // look of motion (real clips: most false tracks were there). A vehicle entering the view
   // confirms once it is in. 0 = only a box reaching outside the image waits.
   double confirm_border_margin_px = 1.0;
+  // ... unless its ground velocity points into the image, within this angle of the inward normal at
+  // every side it reaches, and it has this many linked moving features: a vehicle driving into the
+  // view. A static object the camera uncovers grows outward over the ground instead. 0 = never.
+  double confirm_entering_max_angle_deg = 60.0;
+  int confirm_entering_min_features = 1;
   int tentative_max_misses = 1;             // a tentative track missing more frames in a row is deleted
   int max_coast_frames = 5;                 // a confirmed track coasts this many frames on prediction
   // An established track (at least gap_min_hits region hits) that misses up to this many frames in a
