@@ -108,7 +108,10 @@ TEST(ChainPaperScenario, ThreeSeedsHoldTheirCorrectRatePrecisionAndFalseAlarms) 
   // 2026-12-06, session 39, the travel heading (docs/tracking.md): correct 96.49 / 92.88 / 95.03 -> 96.64 / 93.09 /
   // 94.94 %, false alarms 1.64 / 1.27 / 1.32 -> 0.94 / 1.17 / 1.35 per frame (mean 1.41 -> 1.15; the false-alarm bound
   // fails without it). Held-out seeds 100-109 first.
-  EXPECT_GE(correct, 0.94);
+  // 2026-12-07, session 45, vehicles driving in across the image border confirm there (docs/tracking.md): correct
+  // 96.81 / 92.99 / 95.09 -> 96.91 / 93.22 / 95.34 % (mean 94.96 -> 95.16, issue 18's 95 %; the bound fails without it).
+  // Held-out seeds 100-109 first.
+  EXPECT_GE(correct, 0.95);
   EXPECT_GE(worst_correct, 0.92);
   EXPECT_EQ(under, 0);
   EXPECT_LE(over, 0.005);
