@@ -27,7 +27,8 @@ struct MotionOptions {
   // In such a frame a feature not yet moving whose LK window has faded below this x the frame's
   // corner threshold (noise on a weak corner, an edge it slides along) does not start moving. 0 = off.
   double faded_corner_ratio = 0.5;
-  int border_px = 6;                // features this close to the image border are not used
+  // Features this close to the image border are not used: 5 keeps the 11 x 11 LK window inside it.
+  int border_px = 5;
   // ... nor this close to a black band at the image's edge (analogue capture, letterboxing): lines
   // from an edge inward with mean grey at most this (and no pixel above 4 x this) are not picture,
   // at most an eighth of each side (active_picture.hpp). 0 = the whole image is picture.
