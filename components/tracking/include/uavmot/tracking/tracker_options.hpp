@@ -141,8 +141,8 @@ struct TrackerOptions {
   // A tentative track does not confirm while its box comes within this distance (px) of the image
   // border. There the camera's motion uncovers or hides part of a static object, so its region
   // grows or shrinks and the box centre moves; its features at the uncovered edge move too: the
-  // look of motion (real clips: most false tracks were there). A vehicle entering the view
-  // confirms once it is in. 0 = only a box reaching outside the image waits.
+  // look of motion (real clips: most false tracks were there). 0 = only a box reaching outside the
+  // image waits.
   double confirm_border_margin_px = 1.0;
   // ... unless its ground velocity points into the image, within this angle of the inward normal at
   // every side it reaches, and it has this many linked moving features: a vehicle driving into the
