@@ -37,6 +37,19 @@ namespace {
 
 bool image_size_known(const cv::Size& image) { return image.width > 0 && image.height > 0; }
 
+// The image's sides that the box comes within `margin_px` (>= 0) of, or reaches past. The image
+// covers [-0.5, width - 0.5) x [-0.5, height - 0.5) (image_bounds.hpp).
+struct SidesReached {
+  bool left = false, right = false, top = false, bottom = false;
+  bool any() const { return left || right || top || bottom; }
+};
+
+SidesReached sides_reached(const OrientedBox& box, const cv::Size& image, double margin_px) {
+  const cv::Rect2d b = axis_aligned_bounds(box);
+  return {b.x - margin_px < -0.5, b.x + b.width + margin_px >= image.width - 0.5, b.y - margin_px < -0.5,
+          b.y + b.height + margin_px >= image.height - 0.5};
+}
+
 }  // namespace
 
 bool inside_view(const OrientedBox& box, const cv::Size& image) {
@@ -52,11 +65,7 @@ bool wholly_inside_view(const OrientedBox& box, const cv::Size& image) {
 }
 
 bool clear_of_border(const OrientedBox& box, const cv::Size& image, double margin_px) {
-  if (!image_size_known(image)) return true;
-  for (const auto& c : box_corners(box)) {
-    if (!inside_image(c - cv::Point2d(margin_px, margin_px), image) || !inside_image(c + cv::Point2d(margin_px, margin_px), image)) return false;
-  }
-  return true;
+  return !image_size_known(image) || !sides_reached(box, image, margin_px).any();
 }
 
 bool entering_view(const OrientedBox& box, const cv::Point2d& velocity, const cv::Size& image, double margin_px,
@@ -64,20 +73,11 @@ bool entering_view(const OrientedBox& box, const cv::Point2d& velocity, const cv
   const double speed = std::hypot(velocity.x, velocity.y);
   if (!image_size_known(image) || max_angle_deg <= 0.0 || speed <= 0.0) return false;
   const double min_cos = std::cos(max_angle_deg * M_PI / 180.0);
-  double min_x = box.cx, max_x = box.cx, min_y = box.cy, max_y = box.cy;
-  for (const auto& c : box_corners(box)) {
-    min_x = std::min(min_x, c.x);
-    max_x = std::max(max_x, c.x);
-    min_y = std::min(min_y, c.y);
-    max_y = std::max(max_y, c.y);
-  }
-  // Every side the box reaches (as clear_of_border draws them) must be one it comes in through.
+  // Every side the box reaches (the sides clear_of_border tests) must be one it comes in through.
   const auto inward = [&](double along_normal) { return along_normal >= min_cos * speed; };
-  if (min_x - margin_px < -0.5 && !inward(velocity.x)) return false;
-  if (max_x + margin_px >= image.width - 0.5 && !inward(-velocity.x)) return false;
-  if (min_y - margin_px < -0.5 && !inward(velocity.y)) return false;
-  if (max_y + margin_px >= image.height - 0.5 && !inward(-velocity.y)) return false;
-  return true;
+  const SidesReached sides = sides_reached(box, image, margin_px);
+  return (!sides.left || inward(velocity.x)) && (!sides.right || inward(-velocity.x)) &&
+         (!sides.top || inward(velocity.y)) && (!sides.bottom || inward(-velocity.y));
 }
 
 bool may_confirm_at(const TrackRecord& track, const OrientedBox& box, const cv::Size& image, const TrackerOptions& options) {

@@ -22,7 +22,7 @@ bool inside_view(const OrientedBox& box, const cv::Size& image);
 // True unless the image size is known and a corner of the box lies outside the image.
 bool wholly_inside_view(const OrientedBox& box, const cv::Size& image);
 
-// True unless the image size is known and a corner of the box lies within `margin_px` of the
+// True unless the image size is known and a corner of the box lies within `margin_px` (>= 0) of the
 // image's edge or outside it.
 bool clear_of_border(const OrientedBox& box, const cv::Size& image, double margin_px);
 
